@@ -1,0 +1,91 @@
+"""The ``ekm`` console script (DESIGN §6): the imperative shell around the packages.
+
+Each sub-command imports what it needs inside its function, so ``ekm --help`` starts fast. Bad input
+of any kind raises :class:`ekm.errors.InputError`; :func:`main` prints its one line on stderr and
+exits with status 2 — never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from ekm.errors import InputError
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (``ekm train: --steps: must be > 0``) and exit status 2."""
+
+    def error(self, message):
+        raise InputError(f"{self.prog}: {message}")
+
+
+def positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {value}")
+    return value
+
+
+def nonneg_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
+    return value
+
+
+def print_json(obj) -> None:
+    """Write ``obj`` as the command's stable JSON output."""
+    json.dump(obj, sys.stdout, indent=2, allow_nan=False)
+    sys.stdout.write("\n")
+
+
+def show_progress(args) -> bool:
+    """Progress bars only on a terminal and never with ``--json``."""
+    return not getattr(args, "json", False) and sys.stderr.isatty()
+
+
+# ------------------------------------------------------------------------------------------- commands
+
+def cmd_worlds(args) -> None:
+    """List, check and draw worlds."""
+    raise InputError("ekm worlds: not available yet")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="ekm", description="Extended Kohonen Maps for a Khepera-like robot (Low 2002).")
+    from ekm import __version__
+
+    parser.add_argument("--version", action="version", version=f"ekm {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    p = sub.add_parser("worlds", help="list, check and draw worlds")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--plot", metavar="DIR", help="draw each world to DIR/NAME.png")
+    p.add_argument("--check", metavar="FILE", nargs="+", help="validate world files (exit 2 on the first bad one)")
+    p.set_defaults(func=cmd_worlds)
+    return parser
+
+
+def main(argv=None) -> int:
+    try:
+        args = build_parser().parse_args(argv)
+        args.func(args)
+    except InputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return InputError.exit_status
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

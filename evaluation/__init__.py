@@ -1,0 +1,1 @@
+"""Positioning metrics and test protocols (thesis ch. 6)."""

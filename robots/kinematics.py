@@ -1,0 +1,107 @@
+"""Differential-drive kinematics with motor lag and actuator noise — one model, two array back-ends.
+
+The same functions run on NumPy (the pymunk world, the NumPy references) and on ``jax.numpy`` (the
+jitted training loops): pass ``xp=np`` or ``xp=jnp``. They are pure and shape-polymorphic, so they
+``jit`` and ``vmap`` without change.
+
+Model (DESIGN §2), per control period of ``n`` sub-steps of ``dt``:
+
+1. the command ``c = (v_l, v_r)`` is clipped to ``±c*``, rounded to the speed unit and multiplied by
+   ``1 + σ ξ`` per wheel, with ``ξ ~ N(0, 1)`` drawn by the caller (noise drawn up front);
+2. each wheel follows that set-point with a first-order lag,
+   ``s_j = c + (s_0 - c) exp(-j dt / τ)``, held constant through sub-step ``j``;
+3. the body integrates by explicit Euler, exactly as pymunk's ``space.step`` integrates a body whose
+   velocity is set before each step: ``θ_{j+1} = θ_j + ω_j dt``,
+   ``p_{j+1} = p_j + v_j (cos θ_j, sin θ_j) dt`` with ``v = (v_l + v_r)/2``, ``ω = (v_r - v_l)/b``.
+
+Sub-steps are evaluated in closed form with cumulative sums — there is no Python or ``lax`` loop
+inside one control period.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from robots.params import KHEPERA, RobotParams
+
+
+class RobotState(NamedTuple):
+    """Robot state pytree. ``pose``: ``(..., 3)`` = (x, y, θ); ``wheels``: ``(..., 2)`` wheel speeds (m/s)."""
+
+    pose: object
+    wheels: object
+
+
+def initial_state(pose, xp=np) -> RobotState:
+    """A robot at rest at ``pose`` = (x, y, θ)."""
+    pose = xp.asarray(pose, dtype=xp.float32 if xp is not np else np.float64)
+    return RobotState(pose=pose, wheels=xp.zeros(pose.shape[:-1] + (2,), dtype=pose.dtype))
+
+
+def motor_setpoint(command, noise, params: RobotParams = KHEPERA, xp=np):
+    """Wheel set-points actually applied for ``command`` ``(..., 2)`` with standard-normal ``noise`` ``(..., 2)``.
+
+    Clip to ``±c*`` (the wheel limit), round to the Khepera speed unit, then apply the multiplicative
+    actuator noise (10 %, thesis ch. 6.1). A command that rounds to zero stops the wheel exactly.
+    """
+    c = xp.clip(command, -params.max_wheel_speed, params.max_wheel_speed)
+    if params.speed_unit > 0:
+        c = xp.round(c / params.speed_unit) * params.speed_unit
+    return c * (1.0 + params.actuator_noise * noise)
+
+
+def is_stop_command(command, params: RobotParams = KHEPERA, xp=np):
+    """True where both wheels of ``command`` ``(..., 2)`` are commanded to stand still (``c = 0``, Eq. 6.1)."""
+    c = xp.clip(command, -params.max_wheel_speed, params.max_wheel_speed)
+    if params.speed_unit > 0:
+        return xp.all(xp.abs(c) < 0.5 * params.speed_unit, axis=-1)
+    return xp.all(c == 0, axis=-1)
+
+
+def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, xp=np):
+    """Move the robot through ``n`` sub-steps towards wheel ``setpoint`` ``(..., 2)``.
+
+    Returns ``(new_state, trace)`` where ``trace`` ``(..., n, 3)`` holds the pose after every sub-step
+    (``trace[..., -1, :] == new_state.pose``); path lengths and first-passage times are read from it.
+    """
+    dt, tau = params.dt, params.motor_tau
+    dtype = state.pose.dtype
+    j = xp.arange(n, dtype=dtype)
+    decay = xp.exp(-dt * j / tau)[:, None]  # (n, 1)
+    s0 = state.wheels[..., None, :]
+    c = setpoint[..., None, :]
+    speeds = c + (s0 - c) * decay  # (..., n, 2): wheel speeds held through each sub-step
+    v = 0.5 * (speeds[..., 0] + speeds[..., 1])  # (..., n)
+    omega = (speeds[..., 1] - speeds[..., 0]) / params.wheel_base
+    theta0 = state.pose[..., 2:3]
+    heading_inc = xp.cumsum(omega * dt, axis=-1)  # θ_{j+1} - θ_0
+    theta_before = theta0 + heading_inc - omega * dt  # θ_j, heading during sub-step j
+    x = state.pose[..., 0:1] + xp.cumsum(v * xp.cos(theta_before) * dt, axis=-1)
+    y = state.pose[..., 1:2] + xp.cumsum(v * xp.sin(theta_before) * dt, axis=-1)
+    theta = theta0 + heading_inc
+    trace = xp.stack([x, y, theta], axis=-1)
+    wheels = setpoint + (state.wheels - setpoint) * xp.exp(xp.asarray(-dt * n / tau, dtype=dtype))
+    return RobotState(pose=trace[..., -1, :], wheels=wheels), trace
+
+
+def step(state: RobotState, command, noise, n: int, params: RobotParams = KHEPERA, xp=np):
+    """One control period: apply ``command`` with actuator ``noise`` and advance ``n`` sub-steps."""
+    return advance(state, motor_setpoint(command, noise, params, xp), n, params, xp)
+
+
+def wrap_angle(a, xp=np):
+    """Wrap angles to (-π, π]."""
+    return xp.pi - xp.mod(xp.pi - a, 2.0 * xp.pi)
+
+
+def egocentric(pose, point, xp=np):
+    """Target ``point`` ``(..., 2)`` seen from ``pose`` ``(..., 3)`` as u_p = (α, d) (thesis ch. 4.1).
+
+    α is the direction relative to the heading, wrapped to (-π, π]; d the Euclidean distance.
+    """
+    dx = point[..., 0] - pose[..., 0]
+    dy = point[..., 1] - pose[..., 1]
+    alpha = wrap_angle(xp.arctan2(dy, dx) - pose[..., 2], xp)
+    return xp.stack([alpha, xp.hypot(dx, dy)], axis=-1)

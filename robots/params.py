@@ -1,0 +1,72 @@
+"""Parameters of the Khepera-like robot, in one frozen dataclass (DESIGN §2).
+
+Every number names its source. SI units throughout: metres, seconds, radians.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+#: Khepera I short-range IR sensor directions (rad, robot frame, 0 = ahead, + = left): about ±85°, ±45°,
+#: ±10° in front and two at the back (thesis Fig. 4.3; K-Team Khepera user manual, sensor layout).
+KHEPERA_IR_ANGLES = tuple(math.radians(a) for a in (85.0, 45.0, 10.0, -10.0, -45.0, -85.0, -160.0, 160.0))
+
+#: 12 long-range sensors evenly around the body (thesis ch. 6.2.2: "12 directed long-range sensors were
+#: modelled around the robot's body"); the first one looks straight ahead.
+LONG_RANGE_IR_ANGLES = tuple(2.0 * math.pi * k / 12.0 - (2.0 * math.pi if k > 6 else 0.0) for k in range(12))
+
+
+@dataclass(frozen=True)
+class SensorSet:
+    """A ring of directed IR range sensors on the body's rim.
+
+    ``range_m`` is measured from the body surface: the long-range set (17.5 cm) sees obstacles up to
+    20 cm from the robot's centre (thesis ch. 6.2.2).
+    """
+
+    angles: tuple[float, ...]
+    range_m: float
+    resolution_m: float = 0.005  # tau = 0.5 cm (thesis ch. 6.2.2)
+    noise: float = 0.10  # 10 % sensor noise (thesis ch. 6.1, Webots)
+
+
+SHORT_RANGE = SensorSet(angles=KHEPERA_IR_ANGLES, range_m=0.05)  # 5 cm (thesis ch. 6.2.1)
+LONG_RANGE = SensorSet(angles=LONG_RANGE_IR_ANGLES, range_m=0.175)  # 17.5 cm (thesis ch. 6.2.2)
+
+
+@dataclass(frozen=True)
+class RobotParams:
+    """The differential-drive robot shared by the JAX kinematics and the pymunk world.
+
+    Wheel commands ``c = (v_l, v_r)`` are in m/s. Before they reach the motors they are clipped to
+    ``±max_wheel_speed`` (c*) and rounded to the Khepera's speed unit; each wheel then follows its
+    command with a first-order lag and 10 % multiplicative noise.
+    """
+
+    radius: float = 0.025  # body radius 25 mm (thesis ch. 6.1 and 6.2.2)
+    wheel_base: float = 0.053  # distance between the wheels, 53 mm (K-Team Khepera I manual; Webots khepera)
+    max_wheel_speed: float = 0.16  # c*: one 1.024 s step moves at most ~0.16 m (thesis ch. 6.1)
+    speed_unit: float = 0.008  # Khepera speed commands are integers of 8 mm/s (K-Team manual); 0 = exact
+    motor_tau: float = 0.1  # first-order motor lag (s): the non-linearity of Eq. 4.1's discussion
+    actuator_noise: float = 0.10  # 10 % actuator noise (thesis ch. 6.1, Webots)
+    target_period: float = 1.024  # target-reaching control period (thesis ch. 6.1)
+    avoid_period: float = 0.128  # obstacle-avoidance control period (thesis ch. 6.2.1)
+    dt: float = 0.016  # physics sub-step: 64 per target-reaching step, 8 per avoidance step
+    short_range: SensorSet = field(default=SHORT_RANGE)
+    long_range: SensorSet = field(default=LONG_RANGE)
+
+    def substeps(self, period: float) -> int:
+        """Number of physics sub-steps in one control period (which must be a multiple of ``dt``)."""
+        n = round(period / self.dt)
+        if n < 1 or abs(n * self.dt - period) > 1e-9:
+            raise ValueError(f"control period {period} s is not a whole number of {self.dt} s sub-steps")
+        return n
+
+    @property
+    def max_step_distance(self) -> float:
+        """Furthest the centre moves in one target-reaching period at full speed (~0.16 m)."""
+        return self.max_wheel_speed * self.target_period
+
+
+KHEPERA = RobotParams()

@@ -1,0 +1,407 @@
+"""World files: the JSON format of DESIGN §2, checked key by key, and the named worlds.
+
+A world is a JSON object in metres and radians, origin bottom-left, x right, y up::
+
+    {"name": "three-rooms", "size": [1.2, 0.5],
+     "walls": [[x0, y0, x1, y1], ...],             # on the planner's a-priori map
+     "obstacles": [shape, ...],                    # known obstacles (on the map)
+     "unforeseen": [shape, ...],                   # only in the world
+     "moving": [{"shape": shape, "path": path}, ...],
+     "events": [{"at_s": 30.0, "add": [shape, ...], "known": true}, ...],
+     "start": [x, y, theta], "goal": [x, y] | {"path": path},
+     "wall_thickness": 0.01}
+
+Shapes: ``{"type": "box", "center": [x, y], "size": [w, h], "angle": a}``, ``{"type": "circle",
+"center": [x, y], "radius": r}``, ``{"type": "polygon", "points": [[x, y], ...]}``,
+``{"type": "segment", "from": [x, y], "to": [x, y]}``. A moving shape is given around its own origin
+(``center`` defaults to ``[0, 0]``); its path places it. Paths: ``{"type": "circle", "center": [x, y],
+"radius": r, "period_s": T, "direction": "ccw" | "cw"}`` (optional ``phase`` in rad, where on the circle
+it starts) and ``{"type": "line", "from": [x, y], "to": [x, y], "speed_mps": v, "bounce": true}`` (with
+``bounce`` false the mover stops at ``to``). Events add shapes at ``at_s``; ``known`` (default true) says
+whether the planner is told and may replan.
+
+Every problem raises :class:`ekm.errors.InputError` with one line naming the file and the key, e.g.
+``lab.json: obstacles[1].radius: must be > 0, got -0.02``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from ekm.errors import InputError
+from robots.geometry import Box, Circle, Point, Polygon, Segment, Shape, bounds, distance, translate
+from robots.params import KHEPERA
+
+
+@dataclass(frozen=True)
+class CirclePath:
+    """Uniform motion on a circle; ``direction`` 'ccw' or 'cw'; starts at angle ``phase`` (rad)."""
+
+    center: Point
+    radius: float
+    period_s: float
+    direction: str = "ccw"
+    phase: float = 0.0
+
+    def position(self, t: float) -> Point:
+        sign = 1.0 if self.direction == "ccw" else -1.0
+        a = self.phase + sign * 2.0 * math.pi * t / self.period_s
+        return (self.center[0] + self.radius * math.cos(a), self.center[1] + self.radius * math.sin(a))
+
+    def velocity(self, t: float) -> Point:
+        sign = 1.0 if self.direction == "ccw" else -1.0
+        w = sign * 2.0 * math.pi / self.period_s
+        a = self.phase + w * t
+        return (-self.radius * w * math.sin(a), self.radius * w * math.cos(a))
+
+    def extent(self) -> tuple[float, float, float, float]:
+        (x, y), r = self.center, self.radius
+        return (x - r, y - r, x + r, y + r)
+
+
+@dataclass(frozen=True)
+class LinePath:
+    """Motion from ``start`` to ``end`` at ``speed_mps``; back and forth if ``bounce``, else it stops at ``end``."""
+
+    start: Point
+    end: Point
+    speed_mps: float
+    bounce: bool = True
+
+    def _s(self, t: float) -> tuple[float, float]:
+        """Fraction along the line and direction of travel (+1 towards ``end``, -1 back, 0 stopped)."""
+        length = math.dist(self.start, self.end)
+        if length == 0.0:
+            return 0.0, 0.0
+        travelled = self.speed_mps * t / length
+        if not self.bounce:
+            return min(travelled, 1.0), (1.0 if travelled < 1.0 else 0.0)
+        phase = travelled % 2.0
+        return (phase, 1.0) if phase <= 1.0 else (2.0 - phase, -1.0)
+
+    def position(self, t: float) -> Point:
+        s, _ = self._s(t)
+        return (self.start[0] + s * (self.end[0] - self.start[0]), self.start[1] + s * (self.end[1] - self.start[1]))
+
+    def velocity(self, t: float) -> Point:
+        _, sign = self._s(t)
+        length = math.dist(self.start, self.end)
+        if sign == 0.0:
+            return (0.0, 0.0)
+        k = sign * self.speed_mps / length
+        return (k * (self.end[0] - self.start[0]), k * (self.end[1] - self.start[1]))
+
+    def extent(self) -> tuple[float, float, float, float]:
+        return (min(self.start[0], self.end[0]), min(self.start[1], self.end[1]),
+                max(self.start[0], self.end[0]), max(self.start[1], self.end[1]))
+
+
+Path_ = CirclePath | LinePath
+
+
+@dataclass(frozen=True)
+class Moving:
+    """A moving obstacle: ``shape`` around its own origin, carried along ``path``."""
+
+    shape: Shape
+    path: Path_
+
+    def at(self, t: float) -> Shape:
+        """The obstacle's shape in world coordinates at time ``t``."""
+        return translate(self.shape, self.path.position(t))
+
+
+@dataclass(frozen=True)
+class Event:
+    """At ``at_s`` seconds the shapes ``add`` appear; ``known``: the planner is told (and may replan)."""
+
+    at_s: float
+    add: tuple[Shape, ...]
+    known: bool = True
+
+
+@dataclass(frozen=True)
+class World:
+    """A validated world (DESIGN §2). Build it with :func:`load_world` or :func:`parse_world`."""
+
+    name: str
+    size: Point
+    start: tuple[float, float, float]
+    goal: Point | Path_
+    walls: tuple[Segment, ...] = ()
+    obstacles: tuple[Shape, ...] = ()
+    unforeseen: tuple[Shape, ...] = ()
+    moving: tuple[Moving, ...] = ()
+    events: tuple[Event, ...] = ()
+    wall_thickness: float = 0.01
+    source: str = field(default="", compare=False)
+
+    @property
+    def border(self) -> tuple[Segment, ...]:
+        """The arena's border as four wall segments."""
+        w, h = self.size
+        corners = [(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)]
+        return tuple(Segment(corners[i], corners[(i + 1) % 4]) for i in range(4))
+
+    @property
+    def moving_goal(self) -> bool:
+        return not isinstance(self.goal, tuple)
+
+    def goal_at(self, t: float = 0.0) -> Point:
+        """Goal position at time ``t`` (a fixed point, or where the moving target is)."""
+        return self.goal.position(t) if self.moving_goal else self.goal
+
+    def known_shapes(self, t: float = 0.0) -> tuple[Shape, ...]:
+        """What the planner's a-priori map holds at ``t``: walls, known obstacles and known events so far."""
+        added = tuple(s for e in self.events if e.known and e.at_s <= t for s in e.add)
+        return self.walls + self.obstacles + added
+
+    def static_shapes(self, t: float = 0.0) -> tuple[Shape, ...]:
+        """Every non-moving shape in the world at ``t`` (known, unforeseen and added by events)."""
+        added = tuple(s for e in self.events if e.at_s <= t for s in e.add)
+        return self.walls + self.obstacles + self.unforeseen + added
+
+    def clearance(self, points, t: float = 0.0, include_moving: bool = True) -> np.ndarray:
+        """Distance from ``points`` ``(..., 2)`` to the nearest wall (border included) or obstacle at ``t``.
+
+        Walls count with half their thickness.
+        """
+        p = np.asarray(points, dtype=float)
+        half = 0.5 * self.wall_thickness
+        walls = self.border + self.walls
+        d = np.min([distance(p, s) - half for s in walls], axis=0)
+        others = [s for s in self.static_shapes(t) if s not in self.walls]
+        if include_moving:
+            others += [m.at(t) for m in self.moving]
+        for s in others:
+            d = np.minimum(d, distance(p, s))
+        return np.maximum(d, 0.0)
+
+    def counts(self) -> dict:
+        """The ``ekm worlds --json`` summary of this world (DESIGN §6)."""
+        return {"name": self.name, "size": list(self.size), "walls": len(self.walls),
+                "obstacles": len(self.obstacles), "unforeseen": len(self.unforeseen),
+                "moving": len(self.moving), "moving_goal": self.moving_goal}
+
+
+# ---------------------------------------------------------------------------------------------- parsing
+
+class _Checker:
+    """Reads one JSON document, raising InputError('<source>: <key path>: <problem>') on the first fault."""
+
+    def __init__(self, source: str):
+        self.source = source
+
+    def fail(self, key: str, msg: str):
+        raise InputError(f"{self.source}: {key}: {msg}" if key else f"{self.source}: {msg}")
+
+    def obj(self, value, key: str, required: tuple[str, ...], optional: tuple[str, ...] = ()) -> dict:
+        if not isinstance(value, dict):
+            self.fail(key, f"must be an object, got {type(value).__name__}")
+        for k in value:
+            if k not in required and k not in optional:
+                allowed = ", ".join(required + optional)
+                self.fail(_join(key, k), f"unknown key (allowed: {allowed})")
+        for k in required:
+            if k not in value:
+                self.fail(_join(key, k), "missing")
+        return value
+
+    def number(self, value, key: str, *, positive: bool = False, nonneg: bool = False) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            self.fail(key, f"must be a number, got {json.dumps(value)}")
+        if not math.isfinite(value):
+            self.fail(key, f"must be finite, got {value}")
+        if positive and value <= 0:
+            self.fail(key, f"must be > 0, got {value}")
+        if nonneg and value < 0:
+            self.fail(key, f"must be >= 0, got {value}")
+        return float(value)
+
+    def vector(self, value, key: str, n: int, **kw) -> tuple[float, ...]:
+        if not isinstance(value, list) or len(value) != n:
+            self.fail(key, f"must be a list of {n} numbers, got {json.dumps(value)}")
+        return tuple(self.number(v, f"{key}[{i}]", **kw) for i, v in enumerate(value))
+
+    def list(self, value, key: str) -> list:
+        if not isinstance(value, list):
+            self.fail(key, f"must be a list, got {type(value).__name__}")
+        return value
+
+    def string(self, value, key: str, choices: tuple[str, ...] | None = None) -> str:
+        if not isinstance(value, str) or not value:
+            self.fail(key, f"must be a non-empty string, got {json.dumps(value)}")
+        if choices and value not in choices:
+            self.fail(key, f"must be one of {', '.join(choices)}, got {json.dumps(value)}")
+        return value
+
+    def boolean(self, value, key: str) -> bool:
+        if not isinstance(value, bool):
+            self.fail(key, f"must be true or false, got {json.dumps(value)}")
+        return value
+
+    def shape(self, value, key: str, relative: bool = False) -> Shape:
+        """A shape; ``relative`` shapes (carried by a path) may omit their centre."""
+        kind = self.string(self.obj(value, key, ("type",), _SHAPE_KEYS)["type"], _join(key, "type"),
+                           ("box", "circle", "polygon", "segment"))
+        center_req = () if relative else ("center",)
+        if kind == "box":
+            v = self.obj(value, key, ("type", "size") + center_req, ("center", "angle"))
+            return Box(self.vector(v.get("center", [0, 0]), _join(key, "center"), 2),
+                       self.vector(v["size"], _join(key, "size"), 2, positive=True),
+                       self.number(v.get("angle", 0.0), _join(key, "angle")))
+        if kind == "circle":
+            v = self.obj(value, key, ("type", "radius") + center_req, ("center",))
+            return Circle(self.vector(v.get("center", [0, 0]), _join(key, "center"), 2),
+                          self.number(v["radius"], _join(key, "radius"), positive=True))
+        if kind == "polygon":
+            v = self.obj(value, key, ("type", "points"))
+            pts = self.list(v["points"], _join(key, "points"))
+            if len(pts) < 3:
+                self.fail(_join(key, "points"), f"a polygon needs at least 3 points, got {len(pts)}")
+            poly = tuple(self.vector(p, f"{_join(key, 'points')}[{i}]", 2) for i, p in enumerate(pts))
+            if abs(_signed_area(poly)) < 1e-12:
+                self.fail(_join(key, "points"), "polygon has zero area")
+            return Polygon(poly)
+        v = self.obj(value, key, ("type", "from", "to"))
+        seg = Segment(self.vector(v["from"], _join(key, "from"), 2), self.vector(v["to"], _join(key, "to"), 2))
+        if seg.start == seg.end:
+            self.fail(key, "segment has zero length")
+        return seg
+
+    def path(self, value, key: str) -> Path_:
+        kind = self.string(self.obj(value, key, ("type",), _PATH_KEYS)["type"], _join(key, "type"),
+                           ("circle", "line"))
+        if kind == "circle":
+            v = self.obj(value, key, ("type", "center", "radius", "period_s"), ("direction", "phase"))
+            return CirclePath(self.vector(v["center"], _join(key, "center"), 2),
+                              self.number(v["radius"], _join(key, "radius"), positive=True),
+                              self.number(v["period_s"], _join(key, "period_s"), positive=True),
+                              self.string(v.get("direction", "ccw"), _join(key, "direction"), ("ccw", "cw")),
+                              self.number(v.get("phase", 0.0), _join(key, "phase")))
+        v = self.obj(value, key, ("type", "from", "to", "speed_mps"), ("bounce",))
+        return LinePath(self.vector(v["from"], _join(key, "from"), 2),
+                        self.vector(v["to"], _join(key, "to"), 2),
+                        self.number(v["speed_mps"], _join(key, "speed_mps"), positive=True),
+                        self.boolean(v.get("bounce", True), _join(key, "bounce")))
+
+
+_SHAPE_KEYS = ("center", "size", "angle", "radius", "points", "from", "to")
+_PATH_KEYS = ("center", "radius", "period_s", "direction", "phase", "from", "to", "speed_mps", "bounce")
+_WORLD_REQUIRED = ("name", "size", "start", "goal")
+_WORLD_OPTIONAL = ("walls", "obstacles", "unforeseen", "moving", "events", "wall_thickness")
+
+
+def _join(key: str, sub: str) -> str:
+    return f"{key}.{sub}" if key else sub
+
+
+def _signed_area(pts) -> float:
+    return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]))
+
+
+def parse_world(doc, source: str = "<world>") -> World:
+    """Build a :class:`World` from a decoded JSON document, checking every key (see module docstring)."""
+    ck = _Checker(source)
+    ck.obj(doc, "", _WORLD_REQUIRED, _WORLD_OPTIONAL)
+    name = ck.string(doc["name"], "name")
+    size = ck.vector(doc["size"], "size", 2, positive=True)
+    thickness = ck.number(doc.get("wall_thickness", 0.01), "wall_thickness", nonneg=True)
+    walls = []
+    for i, w in enumerate(ck.list(doc.get("walls", []), "walls")):
+        x0, y0, x1, y1 = ck.vector(w, f"walls[{i}]", 4)
+        if (x0, y0) == (x1, y1):
+            ck.fail(f"walls[{i}]", "wall has zero length")
+        walls.append(Segment((x0, y0), (x1, y1)))
+    obstacles = [ck.shape(s, f"obstacles[{i}]") for i, s in enumerate(ck.list(doc.get("obstacles", []), "obstacles"))]
+    unforeseen = [ck.shape(s, f"unforeseen[{i}]") for i, s in enumerate(ck.list(doc.get("unforeseen", []), "unforeseen"))]
+    moving = []
+    for i, m in enumerate(ck.list(doc.get("moving", []), "moving")):
+        key = f"moving[{i}]"
+        ck.obj(m, key, ("shape", "path"))
+        moving.append(Moving(ck.shape(m["shape"], f"{key}.shape", relative=True), ck.path(m["path"], f"{key}.path")))
+    events = []
+    for i, e in enumerate(ck.list(doc.get("events", []), "events")):
+        key = f"events[{i}]"
+        ck.obj(e, key, ("at_s", "add"), ("known",))
+        add = tuple(ck.shape(s, f"{key}.add[{j}]") for j, s in enumerate(ck.list(e["add"], f"{key}.add")))
+        events.append(Event(ck.number(e["at_s"], f"{key}.at_s", nonneg=True), add,
+                            ck.boolean(e.get("known", True), f"{key}.known")))
+    start = ck.vector(doc["start"], "start", 3)
+    if isinstance(doc["goal"], dict):
+        ck.obj(doc["goal"], "goal", ("path",))
+        goal = ck.path(doc["goal"]["path"], "goal.path")
+    else:
+        goal = ck.vector(doc["goal"], "goal", 2)
+
+    # Everything must lie inside the arena.
+    w, h = size
+
+    def inside(box, key):
+        x0, y0, x1, y1 = box
+        tol = 1e-9
+        if x0 < -tol or y0 < -tol or x1 > w + tol or y1 > h + tol:
+            ck.fail(key, f"lies outside the {w} x {h} m arena (spans x {x0:.3g}..{x1:.3g}, y {y0:.3g}..{y1:.3g})")
+
+    for i, s in enumerate(walls):
+        inside(bounds(s), f"walls[{i}]")
+    for group, shapes in (("obstacles", obstacles), ("unforeseen", unforeseen)):
+        for i, s in enumerate(shapes):
+            inside(bounds(s), f"{group}[{i}]")
+    for i, m in enumerate(moving):
+        px0, py0, px1, py1 = m.path.extent()
+        sx0, sy0, sx1, sy1 = bounds(m.shape)
+        inside((px0 + sx0, py0 + sy0, px1 + sx1, py1 + sy1), f"moving[{i}]")
+    for i, e in enumerate(events):
+        for j, s in enumerate(e.add):
+            inside(bounds(s), f"events[{i}].add[{j}]")
+    inside((start[0], start[1], start[0], start[1]), "start")
+    goal_extent = goal.extent() if isinstance(goal, (CirclePath, LinePath)) else (goal[0], goal[1], goal[0], goal[1])
+    inside(goal_extent, "goal")
+
+    world = World(name=name, size=size, start=start, goal=goal, walls=tuple(walls), obstacles=tuple(obstacles),
+                  unforeseen=tuple(unforeseen), moving=tuple(moving), events=tuple(events),
+                  wall_thickness=thickness, source=source)
+    # The robot must fit at its start; a fixed goal must not lie inside an obstacle or a wall.
+    clear = float(world.clearance(np.asarray(start[:2]), 0.0))
+    if clear < KHEPERA.radius:
+        ck.fail("start", f"the robot (radius {KHEPERA.radius} m) at {list(start[:2])} overlaps a wall or obstacle "
+                         f"(clearance {clear:.3f} m)")
+    if not world.moving_goal and float(world.clearance(np.asarray(goal), 0.0, include_moving=False)) <= 0.0:
+        ck.fail("goal", f"{list(goal)} lies inside a wall or obstacle")
+    return world
+
+
+def named_worlds() -> list[str]:
+    """Names of the worlds shipped with the package, sorted."""
+    files = resources.files("robots.worlds").iterdir()
+    return sorted(f.name[:-5] for f in files if f.name.endswith(".json"))
+
+
+def load_world(name_or_path: str | Path) -> World:
+    """Load a named world (``ekm worlds`` lists them) or a world file, validating every key."""
+    text_source = str(name_or_path)
+    path = Path(name_or_path)
+    if path.suffix != ".json" and not path.exists() and text_source in named_worlds():
+        text = resources.files("robots.worlds").joinpath(f"{text_source}.json").read_text()
+        source = text_source
+    else:
+        if not path.is_file():
+            names = ", ".join(named_worlds())
+            raise InputError(f"{text_source}: no such world file or named world (named worlds: {names})")
+        try:
+            text = path.read_text()
+        except (OSError, UnicodeDecodeError) as exc:
+            raise InputError(f"{text_source}: cannot read world file ({exc.__class__.__name__}: {exc})") from None
+        source = text_source
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{source}: not valid JSON ({exc.msg} at line {exc.lineno} column {exc.colno})") from None
+    return parse_world(doc, source)
