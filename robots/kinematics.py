@@ -60,29 +60,41 @@ def is_stop_command(command, params: RobotParams = KHEPERA, xp=np):
     return xp.all(c == 0, axis=-1)
 
 
+def wheel_speeds(wheels, setpoint, n: int, params: RobotParams = KHEPERA, xp=np):
+    """First-order motor lag: wheel speeds ``(..., n, 2)`` held through each of ``n`` sub-steps, and the
+    speeds ``(..., 2)`` at the end of the period.
+
+    ``s_j = c + (s_0 - c) exp(-j dt / τ)`` for set-point ``c``; the pymunk world drives its body with
+    exactly these speeds, which is why both simulators agree in free space.
+    """
+    dt, tau = params.dt, params.motor_tau
+    dtype = wheels.dtype
+    decay = xp.exp(-dt * xp.arange(n, dtype=dtype) / tau)[:, None]  # (n, 1)
+    s0, c = wheels[..., None, :], setpoint[..., None, :]
+    end = setpoint + (wheels - setpoint) * xp.exp(xp.asarray(-dt * n / tau, dtype=dtype))
+    return c + (s0 - c) * decay, end
+
+
+def body_twist(speeds, params: RobotParams = KHEPERA):
+    """Forward speed ``v = (v_l + v_r)/2`` and turn rate ``ω = (v_r - v_l)/b`` of wheel ``speeds`` ``(..., 2)``."""
+    return 0.5 * (speeds[..., 0] + speeds[..., 1]), (speeds[..., 1] - speeds[..., 0]) / params.wheel_base
+
+
 def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, xp=np):
     """Move the robot through ``n`` sub-steps towards wheel ``setpoint`` ``(..., 2)``.
 
     Returns ``(new_state, trace)`` where ``trace`` ``(..., n, 3)`` holds the pose after every sub-step
     (``trace[..., -1, :] == new_state.pose``); path lengths and first-passage times are read from it.
     """
-    dt, tau = params.dt, params.motor_tau
-    dtype = state.pose.dtype
-    j = xp.arange(n, dtype=dtype)
-    decay = xp.exp(-dt * j / tau)[:, None]  # (n, 1)
-    s0 = state.wheels[..., None, :]
-    c = setpoint[..., None, :]
-    speeds = c + (s0 - c) * decay  # (..., n, 2): wheel speeds held through each sub-step
-    v = 0.5 * (speeds[..., 0] + speeds[..., 1])  # (..., n)
-    omega = (speeds[..., 1] - speeds[..., 0]) / params.wheel_base
+    dt = params.dt
+    speeds, wheels = wheel_speeds(state.wheels, setpoint, n, params, xp)
+    v, omega = body_twist(speeds, params)  # (..., n) each
     theta0 = state.pose[..., 2:3]
     heading_inc = xp.cumsum(omega * dt, axis=-1)  # θ_{j+1} - θ_0
     theta_before = theta0 + heading_inc - omega * dt  # θ_j, heading during sub-step j
     x = state.pose[..., 0:1] + xp.cumsum(v * xp.cos(theta_before) * dt, axis=-1)
     y = state.pose[..., 1:2] + xp.cumsum(v * xp.sin(theta_before) * dt, axis=-1)
-    theta = theta0 + heading_inc
-    trace = xp.stack([x, y, theta], axis=-1)
-    wheels = setpoint + (state.wheels - setpoint) * xp.exp(xp.asarray(-dt * n / tau, dtype=dtype))
+    trace = xp.stack([x, y, theta0 + heading_inc], axis=-1)
     return RobotState(pose=trace[..., -1, :], wheels=wheels), trace
 
 
