@@ -40,24 +40,24 @@ def initial_state(pose, xp=np) -> RobotState:
     return RobotState(pose=pose, wheels=xp.zeros(pose.shape[:-1] + (2,), dtype=pose.dtype))
 
 
-def motor_setpoint(command, noise, params: RobotParams = KHEPERA, xp=np):
-    """Wheel set-points actually applied for ``command`` ``(..., 2)`` with standard-normal ``noise`` ``(..., 2)``.
-
-    Clip to ``±c*`` (the wheel limit), round to the Khepera speed unit, then apply the multiplicative
-    actuator noise (10 %, thesis ch. 6.1). A command that rounds to zero stops the wheel exactly.
-    """
+def quantize_command(command, params: RobotParams = KHEPERA, xp=np):
+    """The command the controller can actually send: clipped to ``±c*`` (wheel limit) and rounded to the
+    Khepera speed unit (8 mm/s). A wheel whose command rounds to zero stands still."""
     c = xp.clip(command, -params.max_wheel_speed, params.max_wheel_speed)
     if params.speed_unit > 0:
         c = xp.round(c / params.speed_unit) * params.speed_unit
-    return c * (1.0 + params.actuator_noise * noise)
+    return c
+
+
+def motor_setpoint(command, noise, params: RobotParams = KHEPERA, xp=np):
+    """Wheel set-points actually applied for ``command`` ``(..., 2)`` with standard-normal ``noise`` ``(..., 2)``:
+    the sent command (:func:`quantize_command`) times ``1 + σ ξ`` — 10 % actuator noise (thesis ch. 6.1)."""
+    return quantize_command(command, params, xp) * (1.0 + params.actuator_noise * noise)
 
 
 def is_stop_command(command, params: RobotParams = KHEPERA, xp=np):
-    """True where both wheels of ``command`` ``(..., 2)`` are commanded to stand still (``c = 0``, Eq. 6.1)."""
-    c = xp.clip(command, -params.max_wheel_speed, params.max_wheel_speed)
-    if params.speed_unit > 0:
-        return xp.all(xp.abs(c) < 0.5 * params.speed_unit, axis=-1)
-    return xp.all(c == 0, axis=-1)
+    """True where both wheels of ``command`` ``(..., 2)`` are sent as zero: the robot has stopped (Eq. 6.1)."""
+    return xp.all(quantize_command(command, params, xp) == 0, axis=-1)
 
 
 def wheel_speeds(wheels, setpoint, n: int, params: RobotParams = KHEPERA, xp=np):
@@ -84,7 +84,8 @@ def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, 
     """Move the robot through ``n`` sub-steps towards wheel ``setpoint`` ``(..., 2)``.
 
     Returns ``(new_state, trace)`` where ``trace`` ``(..., n, 3)`` holds the pose after every sub-step
-    (``trace[..., -1, :] == new_state.pose``); path lengths and first-passage times are read from it.
+    (``trace[..., -1, :] == new_state.pose``, headings wrapped to (-π, π]); path lengths and
+    first-passage times are read from it.
     """
     dt = params.dt
     speeds, wheels = wheel_speeds(state.wheels, setpoint, n, params, xp)
@@ -94,7 +95,7 @@ def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, 
     theta_before = theta0 + heading_inc - omega * dt  # θ_j, heading during sub-step j
     x = state.pose[..., 0:1] + xp.cumsum(v * xp.cos(theta_before) * dt, axis=-1)
     y = state.pose[..., 1:2] + xp.cumsum(v * xp.sin(theta_before) * dt, axis=-1)
-    trace = xp.stack([x, y, theta0 + heading_inc], axis=-1)
+    trace = xp.stack([x, y, wrap_angle(theta0 + heading_inc, xp)], axis=-1)
     return RobotState(pose=trace[..., -1, :], wheels=wheels), trace
 
 
