@@ -116,6 +116,24 @@ def test_a_thin_segment_obstacle_is_seen_at_its_distance():
     assert sim.ranges()[0] == pytest.approx(0.6 - 0.5 - R, abs=1e-12)
 
 
+def test_sensors_see_a_moving_obstacle_where_it_is_now():
+    world = load_world("three-rooms-moving")  # robot-sized disc on a 12 s anticlockwise circle
+    mover = world.moving[0]
+    sim = PymunkWorld(world, seed=0)
+    pose = (0.55, 0.24, 0.0)
+    sim.place(pose)
+    p, u = rays(pose, LONG_RANGE)
+    front = [0, 1, 2, 3, 9, 10, 11]  # the sensors behind see the wall at x = 0.4
+    seen = []
+    for _ in range(3):
+        centre = mover.at(sim.t).center
+        exact = expected([ray_to_circle(p[k], u[k], centre, mover.shape.radius) for k in front], LONG_RANGE)
+        np.testing.assert_allclose(sim.ranges()[front], exact, atol=1e-9)
+        seen.append([front[i] for i in np.flatnonzero(np.isfinite(exact))])
+        sim.step([0.0, 0.0], period=KHEPERA.target_period)
+    assert seen == [[0], [1], [1]]  # straight ahead at first, then up to the left (the +30 degree sensor)
+
+
 def test_short_range_sensors_of_a_robot_3cm_from_a_wall():
     pose = (0.94, 0.5, 0.0)  # rim 3 cm from the right wall's face
     sim = PymunkWorld(arena(), seed=0)
