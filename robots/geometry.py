@@ -107,6 +107,61 @@ def polygon_contains(points, vertices) -> np.ndarray:
     return inside
 
 
+def signed_area(vertices) -> float:
+    """Shoelace area of the polygon through ``vertices`` ``(m, 2)``: positive when counter-clockwise."""
+    v = np.asarray(vertices, dtype=float)
+    x, y = v[:, 0], v[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def _orientation(p, q, r) -> float:
+    """Twice the signed area of triangle ``p q r`` (> 0: left turn)."""
+    return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+
+
+def _segments_touch(a, b, c, d) -> bool:
+    """Do the closed segments ``a``–``b`` and ``c``–``d`` share a point (crossing or touching)?"""
+    o1, o2, o3, o4 = _orientation(a, b, c), _orientation(a, b, d), _orientation(c, d, a), _orientation(c, d, b)
+    if ((o1 > 0) != (o2 > 0) and o1 != 0 and o2 != 0) and ((o3 > 0) != (o4 > 0) and o3 != 0 and o4 != 0):
+        return True
+
+    def on(p, q, r):  # r collinear with p-q and within its bounding box
+        return min(p[0], q[0]) <= r[0] <= max(p[0], q[0]) and min(p[1], q[1]) <= r[1] <= max(p[1], q[1])
+
+    return ((o1 == 0 and on(a, b, c)) or (o2 == 0 and on(a, b, d))
+            or (o3 == 0 and on(c, d, a)) or (o4 == 0 and on(c, d, b)))
+
+
+def polygon_self_intersection(vertices) -> tuple[int, int] | None:
+    """First pair of edges ``(i, j)`` of the closed polygon that cross or touch, or None if it is simple.
+
+    Edge ``i`` runs from vertex ``i`` to vertex ``i + 1``. Neighbouring edges may share only their common
+    vertex; a repeated vertex, a spike folding back on itself or two crossing edges all make a polygon
+    non-simple (it then has no well-defined inside for the physics and the planner).
+    """
+    v = [tuple(map(float, p)) for p in vertices]
+    m = len(v)
+    edges = [(v[i], v[(i + 1) % m]) for i in range(m)]
+    for i, (a, b) in enumerate(edges):
+        if a == b:
+            return (i, i)
+        for j in range(i + 1, m):
+            c, d = edges[j]
+            if j == i + 1 or (i == 0 and j == m - 1):  # neighbours: only the shared vertex may touch
+                shared, other_a, other_b = (b, a, d) if j == i + 1 else (a, b, c)
+                if _orientation(other_a, shared, other_b) == 0 and _dot_back(other_a, shared, other_b):
+                    return (i, j)
+                continue
+            if _segments_touch(a, b, c, d):
+                return (i, j)
+    return None
+
+
+def _dot_back(p, q, r) -> bool:
+    """For collinear ``p``, ``q``, ``r``: does the path ``p → q → r`` fold back at ``q``?"""
+    return (q[0] - p[0]) * (r[0] - q[0]) + (q[1] - p[1]) * (r[1] - q[1]) < 0
+
+
 def distance(points, shape: Shape) -> np.ndarray:
     """Distance from ``points`` ``(..., 2)`` to ``shape``; 0 inside a solid shape."""
     p = np.asarray(points, dtype=float)

@@ -35,7 +35,8 @@ from pathlib import Path
 import numpy as np
 
 from ekm.errors import InputError
-from robots.geometry import Box, Circle, Point, Polygon, Segment, Shape, bounds, distance, translate
+from robots.geometry import (Box, Circle, Point, Polygon, Segment, Shape, bounds, distance, polygon_self_intersection,
+                             signed_area, translate)
 from robots.params import KHEPERA
 
 
@@ -266,7 +267,12 @@ class _Checker:
             if len(pts) < 3:
                 self.fail(_join(key, "points"), f"a polygon needs at least 3 points, got {len(pts)}")
             poly = tuple(self.vector(p, f"{_join(key, 'points')}[{i}]", 2) for i, p in enumerate(pts))
-            if abs(_signed_area(poly)) < 1e-12:
+            crossing = polygon_self_intersection(poly)
+            if crossing is not None:
+                i, j = crossing
+                self.fail(_join(key, "points"), f"not a simple polygon: edge {i} (points {i}-{(i + 1) % len(poly)}) "
+                                                f"meets edge {j} (points {j}-{(j + 1) % len(poly)})")
+            if abs(signed_area(poly)) < 1e-12:
                 self.fail(_join(key, "points"), "polygon has zero area")
             return Polygon(poly)
         v = self.obj(value, key, ("type", "from", "to"))
@@ -300,10 +306,6 @@ _WORLD_OPTIONAL = ("walls", "obstacles", "unforeseen", "moving", "events", "wall
 
 def _join(key: str, sub: str) -> str:
     return f"{key}.{sub}" if key else sub
-
-
-def _signed_area(pts) -> float:
-    return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]))
 
 
 def parse_world(doc, source: str = "<world>") -> World:
@@ -401,7 +403,23 @@ def load_world(name_or_path: str | Path) -> World:
             raise InputError(f"{text_source}: cannot read world file ({exc.__class__.__name__}: {exc})") from None
         source = text_source
     try:
-        doc = json.loads(text)
+        doc = json.loads(text, object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as exc:
         raise InputError(f"{source}: not valid JSON ({exc.msg} at line {exc.lineno} column {exc.colno})") from None
+    except _DuplicateKey as exc:
+        raise InputError(f"{source}: {exc.args[0]}: given twice (JSON would silently keep the last)") from None
     return parse_world(doc, source)
+
+
+class _DuplicateKey(ValueError):
+    pass
+
+
+def _unique_keys(pairs) -> dict:
+    """``json.loads`` hook: an object with a repeated key is an error, not a silent overwrite."""
+    doc = {}
+    for key, value in pairs:
+        if key in doc:
+            raise _DuplicateKey(key)
+        doc[key] = value
+    return doc

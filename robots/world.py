@@ -1,0 +1,339 @@
+"""The pymunk world: walls, obstacles, moving obstacles, events, contact and IR sensors (DESIGN §2).
+
+This is the imperative shell around :mod:`robots.kinematics` for every run that has obstacles in it
+(thesis ch. 6.2: Figs. 6.3–6.8). One :class:`PymunkWorld` holds one robot in one :class:`World`::
+
+    from robots.worldfile import load_world
+    from robots.world import PymunkWorld
+
+    sim = PymunkWorld(load_world("three-rooms-static"), seed=0)
+    readings = sim.sense()                     # 12 long-range IR readings (m from the body surface)
+    state, trace = sim.step([0.08, 0.10])      # one 0.128 s control period
+
+How the robot moves
+-------------------
+The motors are the kinematics' own: :func:`~robots.kinematics.motor_setpoint` (clip to c*, speed unit,
+10 % actuator noise) and :func:`~robots.kinematics.wheel_speeds` (first-order lag). Before each physics
+sub-step the body's velocity is *set* from :func:`~robots.kinematics.body_twist` — velocity control —
+and ``space.step(dt)`` moves it by explicit Euler, exactly the integration of
+:func:`robots.kinematics.advance`. In free space both simulators therefore trace the same path (to
+floating-point rounding).
+
+Contact: the body is a dynamic circle of radius 25 mm without friction or bounce. While it touches
+something, the part of its commanded velocity that would push into the contact (relative to the other
+body, so a moving obstacle shoves the robot) is removed before the sub-step: the wheels keep turning and
+the robot slides along walls instead of being driven through them. Without this the solver's gentle
+position correction lets a velocity-controlled body sink about a body radius into a wall.
+Overlaps stay within one sub-step of travel (about 2.6 mm at full speed) and decay to the 0.1 mm slop.
+
+Moving obstacles are kinematic bodies: before each sub-step their velocity is set to the secant
+``(path(t + dt) - position) / dt``, so they sit exactly on their path after every sub-step and their
+contacts see the true velocity. Events add their shapes (static) at the first sub-step with
+``t >= at_s``. A moving goal is ``world.goal_at(t)``.
+
+Randomness: one seed → two independent streams (``numpy`` ``Generator.spawn``), one for actuator noise
+and one for sensor noise, so how often a controller reads its sensors does not change the motor noise
+it gets. Same seed, same calls → the same trajectory, bit for bit.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pymunk
+from pymunk.autogeometry import convex_decomposition
+
+from robots import kinematics
+from robots.geometry import Box, Circle, Polygon, Segment, Shape, signed_area
+from robots.kinematics import RobotState
+from robots.params import KHEPERA, RobotParams, SensorSet
+from robots.sensors import ir_readings, sensor_rays
+from robots.worldfile import World
+
+ROBOT_CATEGORY = 0b1
+"""Collision category bit of the robot's body: IR rays use a filter that excludes it."""
+
+_SENSOR_FILTER = pymunk.ShapeFilter(mask=pymunk.ShapeFilter.ALL_MASKS() ^ ROBOT_CATEGORY)
+_ROBOT_COLLISION_TYPE = 1
+_ROBOT_MASS = 0.07  # kg, Khepera I (K-Team manual). Walls are static and movers kinematic, so it never matters.
+_SLOP = 1e-4  # m of overlap pymunk tolerates before it pushes shapes apart (its default, 0.1, is in pixels)
+
+
+def convex_pieces(vertices) -> list[np.ndarray]:
+    """Split a simple polygon ``(m, 2)`` into convex pieces (``pymunk.Poly`` takes only convex hulls).
+
+    Uses Chipmunk's exact convex decomposition (``pymunk.autogeometry.convex_decomposition`` with zero
+    tolerance); a convex polygon comes back as one piece. The pieces tile the polygon: their areas add up
+    to its area.
+    """
+    v = [tuple(map(float, p)) for p in vertices]
+    if signed_area(v) < 0:  # Chipmunk wants counter-clockwise outlines
+        v = v[::-1]
+    hulls = convex_decomposition(v + [v[0]], 0.0)
+    return [np.array([tuple(p) for p in hull[:-1]]) for hull in hulls]
+
+
+def pymunk_shapes(shape: Shape, body: pymunk.Body, thickness: float = 0.0) -> list[pymunk.Shape]:
+    """The pymunk shapes of a world ``shape``, attached to ``body`` (in the body's frame).
+
+    Segments get radius ``thickness / 2`` (walls are as thick as the world's ``wall_thickness``; a
+    ``segment`` obstacle is infinitely thin, as :func:`robots.geometry.distance` treats it). Shapes have
+    no friction and no bounce.
+    """
+    if isinstance(shape, Circle):
+        shapes = [pymunk.Circle(body, shape.radius, offset=shape.center)]
+    elif isinstance(shape, Segment):
+        shapes = [pymunk.Segment(body, shape.start, shape.end, 0.5 * thickness)]
+    elif isinstance(shape, Box):
+        shapes = [pymunk.Poly(body, [tuple(p) for p in shape.vertices()])]
+    elif isinstance(shape, Polygon):
+        shapes = [pymunk.Poly(body, [tuple(p) for p in piece]) for piece in convex_pieces(shape.vertices())]
+    else:
+        raise TypeError(f"not a world shape: {shape!r}")
+    for s in shapes:
+        s.friction = 0.0
+        s.elasticity = 0.0
+    return shapes
+
+
+class PymunkWorld:
+    """One robot in one world, stepped in control periods.
+
+    Parameters
+    ----------
+    world : World
+        A validated world (:func:`robots.worldfile.load_world`).
+    params : RobotParams
+        The robot (body radius, motors, sub-step ``dt``, sensor sets).
+    seed : int
+        Seeds the actuator- and sensor-noise streams.
+
+    Attributes
+    ----------
+    world, params : the world and robot this simulation runs.
+    space : pymunk.Space
+        The physics space (for inspection; change it at your own risk).
+    wheels : ndarray ``(2,)``
+        Current wheel speeds (m/s), the motor state carried between periods.
+    collisions : int
+        Contact-begin events between the robot and anything (wall, obstacle, mover). Sliding along one
+        wall is one collision; bumping into the corner where two walls meet counts each wall.
+    trace : ndarray ``(n, 3)``
+        Poses after every sub-step of the last :meth:`step` (the start pose before the first step).
+    """
+
+    def __init__(self, world: World, params: RobotParams = KHEPERA, seed: int = 0):
+        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+            raise ValueError(f"PymunkWorld: seed must be a non-negative integer, got {seed!r}")
+        self.world = world
+        self.params = params
+        self._motor_rng, self._sensor_rng = np.random.default_rng(int(seed)).spawn(2)
+        self._k = 0  # sub-steps taken; t = k dt without drift
+
+        self.space = pymunk.Space()
+        self.space.collision_slop = _SLOP
+        static = self.space.static_body
+        for wall in world.border + world.walls:
+            self.space.add(*pymunk_shapes(wall, static, world.wall_thickness))
+        for shape in world.obstacles + world.unforeseen:
+            self.space.add(*pymunk_shapes(shape, static))
+        self._pending = sorted(world.events, key=lambda e: e.at_s)
+
+        self._movers = []
+        for m in world.moving:
+            body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+            body.position = m.path.position(0.0)
+            self.space.add(body, *pymunk_shapes(m.shape, body))
+            self._movers.append((body, m.path))
+
+        self._body = pymunk.Body(_ROBOT_MASS, pymunk.moment_for_circle(_ROBOT_MASS, 0.0, params.radius))
+        disc = pymunk.Circle(self._body, params.radius)
+        disc.friction, disc.elasticity = 0.0, 0.0
+        disc.collision_type = _ROBOT_COLLISION_TYPE
+        disc.filter = pymunk.ShapeFilter(categories=ROBOT_CATEGORY)
+        self.space.add(self._body, disc)
+        self.collisions = 0
+        self.space.on_collision(_ROBOT_COLLISION_TYPE, None, begin=self._count_collision)
+
+        self.place(world.start)
+        self._fire_events()
+
+    # ------------------------------------------------------------------------------------------ state
+    @property
+    def t(self) -> float:
+        """Simulated time (s)."""
+        return self._k * self.params.dt
+
+    @property
+    def pose(self) -> np.ndarray:
+        """Robot pose ``(3,)`` = (x, y, θ); θ is not wrapped (as in :mod:`robots.kinematics`)."""
+        b = self._body
+        return np.array([b.position.x, b.position.y, b.angle])
+
+    @property
+    def state(self) -> RobotState:
+        """Pose and wheel speeds as the kinematics' :class:`~robots.kinematics.RobotState`."""
+        return RobotState(pose=self.pose, wheels=self.wheels.copy())
+
+    @property
+    def goal(self) -> tuple[float, float]:
+        """Where the goal is now (a moving target moves, Samba's scenario)."""
+        return self.world.goal_at(self.t)
+
+    def moving_positions(self) -> np.ndarray:
+        """Positions ``(k, 2)`` of the moving obstacles' origins, in ``world.moving`` order."""
+        return np.array([[b.position.x, b.position.y] for b, _ in self._movers]).reshape(-1, 2)
+
+    def place(self, pose) -> None:
+        """Put the robot at ``pose`` = (x, y, θ), at rest (wheels stopped). Does not check for overlap."""
+        x, y, theta = _finite(pose, 3, "place: pose")
+        self._body.position = (x, y)
+        self._body.angle = theta
+        self._body.velocity = (0.0, 0.0)
+        self._body.angular_velocity = 0.0
+        self.space.reindex_shapes_for_body(self._body)
+        self.wheels = np.zeros(2)
+        self.trace = self.pose[None, :]
+
+    # ------------------------------------------------------------------------------------------- step
+    def step(self, command, noise=None, period: float | None = None):
+        """Drive with wheel ``command`` = (v_l, v_r) m/s for one control period.
+
+        Parameters
+        ----------
+        command : array ``(2,)``
+            Wheel speed command; clipped to c* and rounded to the speed unit by the motors.
+        noise : array ``(2,)``, optional
+            Standard-normal actuator noise ξ (10 % of the set-point, thesis ch. 6.1). Drawn from the
+            world's actuator stream if omitted; pass ``[0, 0]`` for a noise-free step.
+        period : float, optional
+            Control period in seconds, a whole number of sub-steps: ``params.avoid_period`` (0.128 s) by
+            default, ``params.target_period`` (1.024 s) for target reaching (thesis ch. 6.1).
+
+        Returns
+        -------
+        state : RobotState
+            Pose and wheel speeds at the end of the period.
+        trace : ndarray ``(n, 3)``
+            Pose after each sub-step (also kept as :attr:`trace`).
+        """
+        period = self.params.avoid_period if period is None else period
+        n = self.params.substeps(period)
+        command = _finite(command, 2, "step: command")
+        noise = self._motor_rng.standard_normal(2) if noise is None else _finite(noise, 2, "step: noise")
+        setpoint = kinematics.motor_setpoint(command, noise, self.params)
+        speeds, self.wheels = kinematics.wheel_speeds(self.wheels, setpoint, n, self.params)
+        v, omega = kinematics.body_twist(speeds, self.params)
+        trace = np.empty((n, 3))
+        for j in range(n):
+            self._substep(float(v[j]), float(omega[j]))
+            trace[j] = self.pose
+        self.trace = trace
+        return self.state, trace
+
+    def _substep(self, v: float, omega: float) -> None:
+        dt = self.params.dt
+        self._fire_events()
+        t_next = (self._k + 1) * dt
+        for body, path in self._movers:
+            x, y = path.position(t_next)
+            body.velocity = ((x - body.position.x) / dt, (y - body.position.y) / dt)
+        theta = self._body.angle
+        self._body.velocity = self._slide((v * math.cos(theta), v * math.sin(theta)))
+        self._body.angular_velocity = omega
+        self.space.step(dt)
+        self._k += 1
+
+    def _slide(self, velocity) -> tuple[float, float]:
+        """``velocity`` without the parts that push into current contacts (relative to the other body)."""
+        contacts: list[tuple[float, float, float, float]] = []
+        self._body.each_arbiter(self._contact, contacts)
+        vx, vy = velocity
+        for nx, ny, ox, oy in contacts:
+            push = (vx - ox) * nx + (vy - oy) * ny
+            if push > 0.0:
+                vx, vy = vx - push * nx, vy - push * ny
+        return (vx, vy)
+
+    def _contact(self, arbiter: pymunk.Arbiter, out: list) -> None:
+        """Append (normal from the robot into the other shape, other body's velocity there) for ``arbiter``."""
+        points = arbiter.contact_point_set.points
+        if not points:
+            return
+        nx, ny = arbiter.normal  # points from shapes[0] to shapes[1]
+        other = arbiter.shapes[1].body
+        if arbiter.shapes[0].body is not self._body:
+            nx, ny, other = -nx, -ny, arbiter.shapes[0].body
+        ox, oy = other.velocity_at_world_point(points[0].point_a)
+        out.append((nx, ny, ox, oy))
+
+    def _fire_events(self) -> None:
+        """Add the shapes of every event whose time has come (``at_s <= t``)."""
+        t = self.t + 1e-9  # t = k dt carries rounding; an event at 6.0 s fires at the sub-step that starts at 6.0 s
+        while self._pending and self._pending[0].at_s <= t:
+            for shape in self._pending.pop(0).add:
+                self.space.add(*pymunk_shapes(shape, self.space.static_body))
+
+    def _count_collision(self, arbiter, space, data) -> None:
+        self.collisions += 1
+
+    # ---------------------------------------------------------------------------------------- sensors
+    def ranges(self, sensors: SensorSet | None = None) -> np.ndarray:
+        """True distances ``(m,)`` from the body surface along each sensor ray; ``inf`` beyond the range.
+
+        Rays are pymunk segment queries from the rim outwards that ignore the robot's own body; a rim
+        already inside an obstacle (pressed against a wall) reads 0.
+        """
+        sensors = self.params.long_range if sensors is None else sensors
+        start, end = sensor_rays(self.pose, sensors, self.params.radius)
+        out = np.full(len(sensors.angles), np.inf)
+        for i, (a, b) in enumerate(zip(start, end)):
+            hit = self.space.segment_query_first(tuple(a), tuple(b), 0.0, _SENSOR_FILTER)
+            if hit is not None:
+                out[i] = hit.alpha * sensors.range_m
+        return out
+
+    def sense(self, sensors: SensorSet | None = None, noise=None) -> np.ndarray:
+        """IR readings ``(m,)``: noisy, quantised distances from the body surface (:func:`robots.sensors.ir_readings`).
+
+        Parameters
+        ----------
+        sensors : SensorSet, optional
+            ``params.long_range`` (12 around, 17.5 cm; thesis ch. 6.2.2) by default, or
+            ``params.short_range`` (8 Khepera sensors, 5 cm; ch. 6.2.1).
+        noise : array ``(m,)`` or scalar, optional
+            Standard-normal sensor noise ξ; drawn from the world's sensor stream if omitted. ``noise=0``
+            gives noise-free readings (still quantised to τ = 0.5 cm).
+
+        Returns
+        -------
+        ndarray ``(m,)``
+            Readings in ``[0, range]`` metres, ``inf`` where nothing is within range.
+        """
+        sensors = self.params.long_range if sensors is None else sensors
+        m = len(sensors.angles)
+        if noise is None:
+            xi = self._sensor_rng.standard_normal(m)
+        else:
+            xi = np.asarray(noise, dtype=float)
+            xi = _finite(np.full(m, xi) if xi.ndim == 0 else xi, m, "sense: noise")
+        return ir_readings(self.ranges(sensors), xi, sensors)
+
+    def __repr__(self) -> str:
+        x, y, theta = self.pose
+        return (f"PymunkWorld({self.world.name!r}, t={self.t:.3f} s, pose=({x:.3f}, {y:.3f}, {theta:.3f}), "
+                f"collisions={self.collisions})")
+
+
+def _finite(value, n: int, where: str) -> np.ndarray:
+    """``value`` as ``n`` finite floats, or a ValueError naming ``where``."""
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"PymunkWorld.{where} must be {n} numbers, got {value!r}") from None
+    if a.shape != (n,):
+        raise ValueError(f"PymunkWorld.{where} must have shape ({n},), got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"PymunkWorld.{where} must be finite, got {a.tolist()}")
+    return a
