@@ -167,9 +167,9 @@ class PymunkWorld:
 
     @property
     def pose(self) -> np.ndarray:
-        """Robot pose ``(3,)`` = (x, y, θ); θ is not wrapped (as in :mod:`robots.kinematics`)."""
+        """Robot pose ``(3,)`` = (x, y, θ), θ wrapped to (-π, π] (as in :mod:`robots.kinematics`)."""
         b = self._body
-        return np.array([b.position.x, b.position.y, b.angle])
+        return np.array([b.position.x, b.position.y, kinematics.wrap_angle(b.angle)])
 
     @property
     def state(self) -> RobotState:

@@ -61,7 +61,7 @@ def test_pymunk_robot_traces_the_jitted_jax_kinematics_within_1mm_over_100_targe
     assert sim_traces.shape == jax_traces.shape == (100, n, 3)
     gap = np.linalg.norm(sim_traces[..., :2] - jax_traces[..., :2], axis=-1)  # every sub-step
     assert gap.max() < 1e-3, gap.max()
-    assert np.abs(sim_traces[..., 2] - jax_traces[..., 2]).max() < 1e-3  # heading (rad)
+    assert np.abs(kinematics.wrap_angle(sim_traces[..., 2] - jax_traces[..., 2])).max() < 1e-3  # heading (rad)
     assert sim.collisions == 0
     path = np.linalg.norm(np.diff(sim_traces.reshape(-1, 3)[:, :2], axis=0), axis=1).sum()
     assert path > 3.0  # the robot really drove (metres), it did not sit still
