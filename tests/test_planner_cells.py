@@ -1,10 +1,12 @@
 """Cell decompositions: slippery cells (thesis Fig. 3.3–3.5), quadtree and grid baselines."""
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from planner import decompose
 from planner.bitmap import FREE, OCCUPIED
 from planner.examples import fig_3_3, format_labels, parse_map, random_bitmap
 from planner.quadtree import label_quadtree
@@ -130,6 +132,17 @@ def test_quadtree_leaves_are_maximal_aligned_free_squares_partitioning_the_free_
         if size < side:  # maximal: the parent block is not all free
             py, px = iy.min() // (2 * size) * 2 * size, ix.min() // (2 * size) * 2 * size
             assert not padded[py:py + 2 * size, px:px + 2 * size].all()
+
+
+@pytest.mark.parametrize("method", ["slippery", "quadtree", "grid"])
+def test_every_decomposition_labels_exactly_the_free_cells(method):
+    W = random_bitmap((30, 50), 0.3, np.random.default_rng(7))
+    _check_decomposition(W, decompose(W, method, tuple(np.argwhere(W == FREE)[0])))
+
+
+def test_grid_makes_one_cell_per_free_bitmap_cell():
+    W = random_bitmap((30, 50), 0.3, np.random.default_rng(3))
+    assert decompose(W, "grid").max() == (W == FREE).sum()
 
 
 def test_slippery_cells_are_fewer_than_quadtree_leaves_on_the_fig_3_3_workspace():
