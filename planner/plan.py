@@ -126,26 +126,34 @@ def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: st
     :class:`InputError` when start or goal lie outside the padded free space or the cell size is bad, and
     :class:`NoRouteError` when no route exists.
     """
-    if method not in METHODS:
-        raise InputError(f"method: must be one of {', '.join(METHODS)}, got {method!r}")
-    start = _point(world.start[:2] if start is None else start, "start")
-    goal = _point(world.goal_at(t) if goal is None else goal, "goal")
-    obstacles = padded_obstacles(world, t, padding)
-    for name, p in (("start", start), ("goal", goal)):
-        if not clearance_ok(p, obstacles, world.size):
-            raise InputError(f"{name} {_fmt(p)}: not in the free space of {world.name} (outside the arena or "
-                             f"closer than {padding} m to a wall or known obstacle)")
-    W = rasterise(obstacles, world.size, cell)
-    return plan_bitmap(W, cell, start, goal, method)
+    start = world.start[:2] if start is None else start
+    goal = world.goal_at(t) if goal is None else goal
+    return _plan(world, start, goal, cell, method, t, padding, check=("start", "goal"))
 
 
 def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius) -> Plan:
     """Plan again from the robot's ``position`` (x, y) on the map known at ``t`` (s) (Fig. 6.5).
 
     Keeps the method, cell size and goal of ``previous``; the slippery labelling restarts from the
-    robot's current cell, as it did from its initial cell (Fig. 3.3b).
+    robot's current cell, as it did from its initial cell (Fig. 3.3b). The robot is where it is: its
+    position is not required to clear the cushion (contact or sensor noise can leave it a little inside),
+    only to lie within one cell of a free bitmap cell.
     """
-    return plan(world, position, previous.goal, cell=previous.cell, method=previous.method, t=t, padding=padding)
+    return _plan(world, position, previous.goal, previous.cell, previous.method, t, padding, check=("goal",))
+
+
+def _plan(world, start, goal, cell, method, t, padding, check) -> Plan:
+    """:func:`plan` with the free-space test applied to the points named in ``check``."""
+    if method not in METHODS:
+        raise InputError(f"method: must be one of {', '.join(METHODS)}, got {method!r}")
+    points = {"start": _point(start, "start"), "goal": _point(goal, "goal")}
+    obstacles = padded_obstacles(world, t, padding)
+    for name in check:
+        if not clearance_ok(points[name], obstacles, world.size):
+            raise InputError(f"{name} {_fmt(points[name])}: not in the free space of {world.name} (outside the "
+                             f"arena or closer than {padding} m to a wall or known obstacle)")
+    W = rasterise(obstacles, world.size, cell)
+    return plan_bitmap(W, cell, points["start"], points["goal"], method)
 
 
 def map_changed(world, since: float, now: float) -> bool:

@@ -65,6 +65,18 @@ def test_three_rooms_changed_uses_the_lower_doorway_then_replans_through_the_upp
         assert_checkpoints_on_shared_boundaries(after)
 
 
+def test_replanning_starts_where_the_robot_is_even_inside_the_cushion():
+    """A robot pressed against a wall (centre 22 mm from it, inside the 25 mm cushion) still gets a plan
+    from its own position; plan() would refuse such a start as user input."""
+    world = load_world("three-rooms-changed")
+    before = plan(world)
+    against_wall = (0.4 + 0.005 + 0.022, 0.45)
+    with pytest.raises(InputError, match="not in the free space"):
+        plan(world, against_wall)
+    after = replan(before, world, against_wall, t=6.0)
+    assert after.start == against_wall and passes_doorway(after, 0.8, 0.40, 0.52)
+
+
 def test_replanning_labels_from_the_robots_new_cell():
     world = load_world("three-rooms-changed")
     after = replan(plan(world), world, (0.6, 0.3), t=6.0)
