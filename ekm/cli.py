@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 
 from ekm.errors import InputError
@@ -53,6 +54,80 @@ def show_progress(args) -> bool:
 
 
 # ------------------------------------------------------------------------------------------- commands
+
+def finite_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text}")
+    return value
+
+
+def positive_float(text: str) -> float:
+    value = finite_float(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return value
+
+
+def nonneg_float(text: str) -> float:
+    value = finite_float(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+    return value
+
+
+def xy_point(text: str) -> tuple[float, float]:
+    """``"X,Y"`` in metres → ``(x, y)``."""
+    parts = text.split(",")
+    try:
+        if len(parts) != 2:
+            raise argparse.ArgumentTypeError("")
+        return finite_float(parts[0]), finite_float(parts[1])
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"must be X,Y in metres (e.g. 0.1,0.3), got {text!r}") from None
+
+
+def cmd_plan(args) -> None:
+    """Plan checkpoints through a world with slippery cells or a baseline decomposition (thesis ch. 3)."""
+    import time
+
+    from planner import DEFAULT_CELL, plan
+    from robots.worldfile import load_world
+
+    world = load_world(args.world)
+    t0 = time.perf_counter()
+    p = plan(world, args.start, args.goal, cell=args.cell or DEFAULT_CELL, method=args.method, t=args.at)
+    seconds = time.perf_counter() - t0
+    route = " -> ".join(map(str, p.route[:12])) + (f" -> ... ({len(p.route)} cells)" if len(p.route) > 12 else "")
+    if args.plot:
+        from planner.plot import save_plan
+
+        title = f"{world.name} at t = {args.at:g} s: {p.method}, {p.cells} cells, {len(p.graph.edges)} arcs"
+        save_plan(args.plot, p, world, args.at, title=title)
+    if args.json:
+        print_json({"method": p.method, "cells": p.cells, "graph_edges": len(p.graph.edges),
+                    "path_cells": list(p.route), "checkpoints": p.checkpoints.round(6).tolist(),
+                    "seconds": round(seconds, 6)})
+        return
+    ny, nx = p.bitmap.shape
+    print(f"{world.name} at t = {args.at:g} s: {p.method} decomposition of a {nx} x {ny} bitmap "
+          f"({p.cell:g} m cells, {int((p.bitmap == 0).sum())} free)")
+    print(f"  {p.cells} cells, {len(p.graph.edges)} graph edges")
+    print(f"  route: {route}")
+    print(f"  start ({p.start[0]:.3f}, {p.start[1]:.3f})")
+    k = len(p.checkpoints) - 1
+    for i, (x, y) in enumerate(p.checkpoints[:-1][:10], 1):
+        print(f"  checkpoint {i} ({x:.3f}, {y:.3f})")
+    if k > 10:
+        print(f"  ... {k - 10} more checkpoints (--json lists them all)")
+    print(f"  goal ({p.goal[0]:.3f}, {p.goal[1]:.3f})")
+    print(f"  checkpoint path {p.length:.3f} m, planned in {seconds:.3f} s")
+    if args.plot:
+        print(f"  plot written to {args.plot}")
+
 
 def cmd_worlds(args) -> None:
     """List the named worlds, or validate world files (``--check``); draw them with ``--plot DIR``.
@@ -118,6 +193,19 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="DIR", help="draw each world to DIR/NAME.png")
     p.add_argument("--check", metavar="FILE", nargs="+", help="validate world files (exit 2 on the first bad one)")
     p.set_defaults(func=cmd_worlds)
+
+    p = sub.add_parser("plan", help="plan checkpoints through a world (slippery cells, quadtree or grid)")
+    p.add_argument("--world", required=True, metavar="W", help="named world or world file")
+    p.add_argument("--start", type=xy_point, metavar="X,Y", help="start in metres (default: the world's)")
+    p.add_argument("--goal", type=xy_point, metavar="X,Y", help="goal in metres (default: the world's)")
+    p.add_argument("--cell", type=positive_float, metavar="M", help="bitmap cell size in metres (default 0.02)")
+    p.add_argument("--method", choices=("slippery", "quadtree", "grid"), default="slippery",
+                   help="cell decomposition (default slippery)")
+    p.add_argument("--at", type=nonneg_float, default=0.0, metavar="SECONDS",
+                   help="plan on the map known at this time (after the known events so far; default 0)")
+    p.add_argument("--plot", metavar="PNG", help="draw cells, graph, route and checkpoints to PNG")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=cmd_plan)
     return parser
 
 

@@ -1,0 +1,175 @@
+"""Plan and replan: world → padded bitmap → cells → graph → route → checkpoints (thesis ch. 3.2, Fig. 6.5).
+
+:func:`plan` is the planner's front door; :func:`plan_bitmap` is the same pipeline on a ready bitmap
+(used by the benchmark and by tests on random workspaces); :func:`replan` plans again from where the
+robot is when the map changes (a known event, Fig. 6.5). All three are pure: they return a :class:`Plan`
+and keep no state.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ekm.errors import InputError
+from planner.bitmap import clearance_ok, free_cell_at, grid_cells, padded_obstacles, rasterise
+from planner.checkpoints import greedy_checkpoints, path_length
+from planner.graph import Graph, adjacency
+from planner.quadtree import label_quadtree
+from planner.search import shortest_route
+from planner.slippery import label_slippery
+from robots.params import KHEPERA
+
+#: The decompositions: slippery cells (ch. 3.2.2) and the two baselines of DESIGN §4.
+METHODS = ("slippery", "quadtree", "grid")
+
+#: Default cell size (m): with the 25 mm cushion, a 0.12 m doorway of ``three-rooms`` keeps two free cells.
+DEFAULT_CELL = 0.02
+
+
+class NoRouteError(InputError):
+    """No sequence of adjacent cells joins the start to the goal on this map (a bad start/goal pair)."""
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A planned route (thesis ch. 3.2.3).
+
+    Attributes
+    ----------
+    method : ``"slippery"``, ``"quadtree"`` or ``"grid"``.
+    cell : bitmap cell size (m).
+    bitmap : ``(ny, nx)`` int32, 0 free / −1 occupied (Fig. 3.3a); ``bitmap[iy, ix]`` covers
+        ``[ix·cell, (ix+1)·cell] × [iy·cell, (iy+1)·cell]``.
+    labels : ``(ny, nx)`` int32, −1 occupied, ``1 … n`` the cell each free bitmap cell belongs to (Fig. 3.3b).
+    graph : the connectivity graph of the cells (:class:`planner.graph.Graph`).
+    route : the cells from the start's to the goal's, in order (the ``path_cells`` of ``ekm plan --json``).
+    start, goal : (x, y) in metres.
+    checkpoints : ``(len(route), 2)``: checkpoint ``i`` is on the boundary of ``route[i]`` and
+        ``route[i+1]``, the last is the goal (Fig. 3.6).
+
+    The checkpoints are waypoints for the reactive layer, not a collision-free polyline: a slippery
+    cell need not be convex, so the straight leg between two checkpoints of one cell may cut a corner
+    of the cushion; the robot stays in the cell by moving towards the next checkpoint and sliding along
+    the cell's boundary (ch. 3.2.1). Quadtree and grid cells are convex, so their legs stay inside.
+    Two consecutive checkpoints can coincide where the route hops through a corner (see
+    :mod:`planner.search`); the reactive layer reaches such a checkpoint at once.
+    """
+
+    method: str
+    cell: float
+    bitmap: np.ndarray
+    labels: np.ndarray
+    graph: Graph
+    route: tuple[int, ...]
+    start: tuple[float, float]
+    goal: tuple[float, float]
+    checkpoints: np.ndarray
+
+    @property
+    def cells(self) -> int:
+        """Number of cells of the decomposition (graph nodes)."""
+        return self.graph.n
+
+    @property
+    def length(self) -> float:
+        """Length (m) of the checkpoint path start → checkpoints → goal."""
+        return path_length(self.start, self.checkpoints)
+
+
+def decompose(W: np.ndarray, method: str, seed: tuple[int, int] | None = None) -> np.ndarray:
+    """Cell labels ``(ny, nx)`` of the bitmap ``W`` by ``method``; slippery labelling starts at ``seed`` (iy, ix)."""
+    if method == "slippery":
+        return label_slippery(W, seed)
+    if method == "quadtree":
+        return label_quadtree(W)
+    if method == "grid":
+        return grid_cells(W)
+    raise InputError(f"method: must be one of {', '.join(METHODS)}, got {method!r}")
+
+
+def plan_bitmap(W: np.ndarray, cell: float, start, goal, method: str = "slippery") -> Plan:
+    """Plan on a ready bitmap ``W`` (0 free / −1 occupied) of ``cell``-metre squares.
+
+    ``start`` and ``goal`` (x, y) must each lie in, or within one cell of, a free bitmap cell (see
+    :func:`planner.bitmap.free_cell_at`). Raises :class:`InputError` if not, and :class:`NoRouteError`
+    if no route joins them.
+    """
+    W = np.asarray(W)
+    start, goal = _point(start, "start"), _point(goal, "goal")
+    where = {}
+    for name, p in (("start", start), ("goal", goal)):
+        where[name] = free_cell_at(W, p, cell)
+        if where[name] is None:
+            raise InputError(f"{name} {_fmt(p)}: no free bitmap cell within {cell} m (cell size {cell} m is too "
+                             "coarse here, or the point is walled in)")
+    labels = decompose(W, method, seed=where["start"])
+    graph = adjacency(labels, cell)
+    start_cell, goal_cell = (int(labels[where[k]]) for k in ("start", "goal"))
+    route = shortest_route(graph, start_cell, start, goal_cell, goal)
+    if route is None:
+        raise NoRouteError(f"no route from start {_fmt(start)} to goal {_fmt(goal)}: they lie in parts of the "
+                           "free space that do not connect at this cell size")
+    checkpoints = greedy_checkpoints(graph, route.cells, start, goal)
+    return Plan(method=method, cell=float(cell), bitmap=W, labels=labels, graph=graph, route=route.cells,
+                start=start, goal=goal, checkpoints=checkpoints)
+
+
+def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: str = "slippery",
+         t: float = 0.0, padding: float = KHEPERA.radius) -> Plan:
+    """Plan checkpoints from ``start`` to ``goal`` through ``world`` on the map known at time ``t`` (s).
+
+    ``start``/``goal`` default to the world's (the goal where it is at ``t``); ``padding`` (m) defaults to
+    the robot radius (ch. 3.2.2: "the cushion width approximates the robot radius"). Raises
+    :class:`InputError` when start or goal lie outside the padded free space or the cell size is bad, and
+    :class:`NoRouteError` when no route exists.
+    """
+    start = world.start[:2] if start is None else start
+    goal = world.goal_at(t) if goal is None else goal
+    return _plan(world, start, goal, cell, method, t, padding, check=("start", "goal"))
+
+
+def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius) -> Plan:
+    """Plan again from the robot's ``position`` (x, y) on the map known at ``t`` (s) (Fig. 6.5).
+
+    Keeps the method, cell size and goal of ``previous``; the slippery labelling restarts from the
+    robot's current cell, as it did from its initial cell (Fig. 3.3b). The robot is where it is: its
+    position is not required to clear the cushion (contact or sensor noise can leave it a little inside),
+    only to lie within one cell of a free bitmap cell.
+    """
+    return _plan(world, position, previous.goal, previous.cell, previous.method, t, padding, check=("goal",))
+
+
+def _plan(world, start, goal, cell, method, t, padding, check) -> Plan:
+    """:func:`plan` with the free-space test applied to the points named in ``check``."""
+    if method not in METHODS:
+        raise InputError(f"method: must be one of {', '.join(METHODS)}, got {method!r}")
+    points = {"start": _point(start, "start"), "goal": _point(goal, "goal")}
+    obstacles = padded_obstacles(world, t, padding)
+    for name in check:
+        if not clearance_ok(points[name], obstacles, world.size):
+            raise InputError(f"{name} {_fmt(points[name])}: not in the free space of {world.name} (outside the "
+                             f"arena or closer than {padding} m to a wall or known obstacle)")
+    W = rasterise(obstacles, world.size, cell)
+    return plan_bitmap(W, cell, points["start"], points["goal"], method)
+
+
+def map_changed(world, since: float, now: float) -> bool:
+    """Whether the planner's map changed in ``(since, now]``: a known event happened (time to :func:`replan`)."""
+    return any(e.known and since < e.at_s <= now for e in world.events)
+
+
+def _point(p, name: str) -> tuple[float, float]:
+    try:
+        x, y = (float(v) for v in p[:2])
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: must be a point (x, y) in metres, got {p!r}") from None
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise InputError(f"{name}: must be finite, got {_fmt((x, y))}")
+    return x, y
+
+
+def _fmt(p) -> str:
+    return f"({p[0]:.3g}, {p[1]:.3g})"
