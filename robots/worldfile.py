@@ -168,17 +168,19 @@ class World:
         added = tuple(s for e in self.events if e.at_s <= t for s in e.add)
         return self.walls + self.obstacles + self.unforeseen + added
 
-    def clearance(self, points, t: float = 0.0, include_moving: bool = True) -> np.ndarray:
+    def clearance(self, points, t: float = 0.0, include_moving: bool = True, known_only: bool = False) -> np.ndarray:
         """Distance from ``points`` ``(..., 2)`` to the nearest wall (border included) or obstacle at ``t``.
 
-        Walls count with half their thickness.
+        Walls count with half their thickness. ``known_only``: only what the planner's map holds
+        (:meth:`known_shapes`; no unforeseen or moving obstacles).
         """
         p = np.asarray(points, dtype=float)
         half = 0.5 * self.wall_thickness
         walls = self.border + self.walls
         d = np.min([distance(p, s) - half for s in walls], axis=0)
-        others = [s for s in self.static_shapes(t) if s not in self.walls]
-        if include_moving:
+        shapes = self.known_shapes(t) if known_only else self.static_shapes(t)
+        others = [s for s in shapes if s not in self.walls]
+        if include_moving and not known_only:
             others += [m.at(t) for m in self.moving]
         for s in others:
             d = np.minimum(d, distance(p, s))

@@ -33,7 +33,7 @@ def test_checkpoints_lie_in_free_space_on_shared_boundaries(name, method):
     world = load_world(name)
     p = plan(world, method=method)
     assert_checkpoints_on_shared_boundaries(p)
-    assert world.clearance(p.checkpoints, 0.0, include_moving=False).min() >= 0.025 - 1e-9
+    assert world.clearance(p.checkpoints, 0.0, known_only=True).min() >= 0.025 - 1e-9
     assert p.length >= np.hypot(*(np.subtract(p.goal, p.start))) - 1e-9
 
 
