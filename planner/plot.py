@@ -7,15 +7,10 @@ PNG atomically (temporary file + rename), so a reader never sees a half-written 
 
 from __future__ import annotations
 
-import os
-import tempfile
-from pathlib import Path
-
 import numpy as np
 
-from ekm.errors import InputError
 from planner.plan import Plan
-from robots.geometry import Box, Circle, Polygon, Segment
+from robots.plot import save_figure
 
 _OCCUPIED_RGB = (0.86, 0.86, 0.86)
 
@@ -56,8 +51,6 @@ def cell_sites(labels: np.ndarray, cell: float) -> np.ndarray:
 def draw_plan(ax, plan: Plan, world=None, t: float = 0.0) -> None:
     """Draw ``plan`` (and, if given, the walls and known obstacles of ``world`` at ``t``) on ``ax``."""
     from matplotlib.collections import LineCollection
-    from matplotlib.patches import Circle as CirclePatch
-    from matplotlib.patches import Polygon as PolygonPatch
 
     labels, c = plan.labels, plan.cell
     ny, nx = labels.shape
@@ -66,13 +59,12 @@ def draw_plan(ax, plan: Plan, world=None, t: float = 0.0) -> None:
     ax.imshow(rgb, origin="lower", extent=(0, nx * c, 0, ny * c), interpolation="nearest")
 
     if world is not None:
-        for s in world.border + world.known_shapes(t):
-            if isinstance(s, Segment):
-                ax.plot(*zip(s.start, s.end), color="k", lw=2.5, solid_capstyle="round")
-            elif isinstance(s, Circle):
-                ax.add_patch(CirclePatch(s.center, s.radius, color="0.25"))
-            elif isinstance(s, (Box, Polygon)):
-                ax.add_patch(PolygonPatch(s.vertices(), closed=True, color="0.25"))
+        from robots.plot import STYLE, draw_shape
+
+        for s in world.border + world.walls:
+            draw_shape(ax, s, STYLE["wall"], thickness=world.wall_thickness)
+        for s in world.known_shapes(t)[len(world.walls):]:
+            draw_shape(ax, s, STYLE["obstacle"])
 
     sites = cell_sites(labels, c)
     if len(plan.graph.edges):
@@ -97,22 +89,10 @@ def save_plan(path, plan: Plan, world=None, t: float = 0.0, title: str | None = 
     """Draw ``plan`` into a PNG at ``path``, written atomically. Raises :class:`InputError` if it cannot be written."""
     from matplotlib.figure import Figure
 
-    path = Path(path)
     ny, nx = plan.labels.shape
     fig = Figure(figsize=(9.0, max(3.0, 9.0 * ny / nx + 0.8)), layout="constrained")
     ax = fig.add_subplot()
     draw_plan(ax, plan, world, t)
     if title:
         ax.set_title(title, fontsize=10)
-    tmp = None
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-        with os.fdopen(fd, "wb") as f:
-            fig.savefig(f, format="png", dpi=120)
-        os.replace(tmp, path)
-    except BaseException as exc:
-        if tmp is not None and os.path.exists(tmp):
-            os.unlink(tmp)
-        if isinstance(exc, OSError):
-            raise InputError(f"{path}: cannot write the plot ({exc.strerror or exc})") from None
-        raise
+    save_figure(fig, path, dpi=120)

@@ -21,6 +21,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from ekm.errors import InputError
 from ekm.files import atomic_write
 from robots.geometry import Box, Circle, Polygon, Segment, Shape
 from robots.params import KHEPERA, LONG_RANGE, RobotParams, SensorSet
@@ -48,7 +49,7 @@ def _capsule(a, b, r: float, n: int = 8) -> np.ndarray:
     return np.concatenate([end, start])
 
 
-def _draw_shape(ax, shape: Shape, style: dict, label: str | None = None, thickness: float = 0.0, **kw):
+def draw_shape(ax, shape: Shape, style: dict, label: str | None = None, thickness: float = 0.0, **kw):
     """Add ``shape`` to ``ax``: a filled patch, a capsule for a thick segment, a line for a thin one."""
     if isinstance(shape, Segment) and thickness <= 0.0:
         xs, ys = zip(shape.start, shape.end)
@@ -129,18 +130,18 @@ def plot_world(world: World, ax=None, t: float = 0.0, sensors: SensorSet | None 
         ax = Figure(figsize=(width + 2.8, width * h / w + 0.8), layout="constrained").add_subplot()
 
     for i, wall in enumerate(world.border + world.walls):
-        _draw_shape(ax, wall, STYLE["wall"], "walls" if i == 0 else None, thickness=world.wall_thickness)
+        draw_shape(ax, wall, STYLE["wall"], "walls" if i == 0 else None, thickness=world.wall_thickness)
     for group, shapes, label in (("obstacle", world.obstacles, "known obstacles"),
                                  ("unforeseen", world.unforeseen, "unforeseen obstacles")):
         for i, shape in enumerate(shapes):
-            _draw_shape(ax, shape, STYLE[group], label if i == 0 else None)
+            draw_shape(ax, shape, STYLE[group], label if i == 0 else None)
     for event in world.events:
         told = "planner told" if event.known else "unforeseen"
         for j, shape in enumerate(event.add):
-            _draw_shape(ax, shape, STYLE["event"], f"added at {event.at_s:g} s ({told})" if j == 0 else None)
+            draw_shape(ax, shape, STYLE["event"], f"added at {event.at_s:g} s ({told})" if j == 0 else None)
     for i, mover in enumerate(world.moving):
         color = STYLE["moving"]["facecolor"]
-        _draw_shape(ax, mover.at(t), STYLE["moving"], "moving obstacles" if i == 0 else None)
+        draw_shape(ax, mover.at(t), STYLE["moving"], "moving obstacles" if i == 0 else None)
         _draw_path(ax, mover.path, color, "their paths" if i == 0 else None, t)
 
     draw_robot(ax, world.start if pose is None else pose, params, sensors, label="robot (start pose)")
@@ -162,8 +163,14 @@ def plot_world(world: World, ax=None, t: float = 0.0, sensors: SensorSet | None 
 
 
 def save_figure(fig, path: str | os.PathLike, dpi: int = 150) -> Path:
-    """Write ``fig`` to ``path`` (format from the suffix) atomically: temp file + rename. Returns the path."""
+    """Write ``fig`` to ``path`` (format from the suffix) atomically: temp file + rename. Returns the path.
+
+    A path that cannot be written raises :class:`ekm.errors.InputError` naming it.
+    """
     path = Path(path)
-    with atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=dpi, format=path.suffix.lstrip(".") or "png")
+    try:
+        with atomic_write(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format=path.suffix.lstrip(".") or "png")
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write the plot ({exc.strerror or exc})") from None
     return path

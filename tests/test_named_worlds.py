@@ -6,6 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from ekm.errors import InputError
+
 from robots.geometry import distance
 from robots.params import KHEPERA, LONG_RANGE, SHORT_RANGE
 from robots.plot import plot_world, save_figure
@@ -124,6 +126,6 @@ def test_save_figure_leaves_nothing_behind_when_writing_fails(tmp_path):
         raise OSError("disk full")
 
     fig.savefig = broken
-    with pytest.raises(OSError, match="disk full"):
+    with pytest.raises(InputError, match="cannot write the plot.*disk full"):
         save_figure(fig, tmp_path / "arena.png")
     assert list(tmp_path.iterdir()) == []
