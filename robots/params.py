@@ -48,7 +48,7 @@ class RobotParams:
     wheel_base: float = 0.053  # distance between the wheels, 53 mm (K-Team Khepera I manual; Webots khepera)
     max_wheel_speed: float = 0.16  # c*: one 1.024 s step moves at most ~0.16 m (thesis ch. 6.1)
     speed_unit: float = 0.008  # Khepera speed commands are integers of 8 mm/s (K-Team manual); 0 = exact
-    motor_tau: float = 0.05  # first-order motor lag (s): the non-linearity of Eq. 4.1's discussion
+    motor_tau: float = 0.02  # first-order motor lag (s): the non-linearity of Eq. 4.1's discussion
     actuator_noise: float = 0.10  # 10 % actuator noise (thesis ch. 6.1, Webots)
     target_period: float = 1.024  # target-reaching control period (thesis ch. 6.1)
     avoid_period: float = 0.128  # obstacle-avoidance control period (thesis ch. 6.2.1)

@@ -1,0 +1,47 @@
+"""Hyper-parameters of an EKM, in one frozen (hashable, jit-static) dataclass."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True)
+class EKMConfig:
+    """Shape and winner-search parameters of an N×N Extended Kohonen Map (thesis ch. 4, DESIGN §3).
+
+    The sensory input is u_p = (α, d): direction (rad, wrapped to (-π, π]) and distance (m) of the target
+    in the robot's frame. Inside the map both components are measured in units that make them of order
+    one — α in half-turns (α/π) and d in step lengths (d/d_scale, the furthest one 1.024 s step can move,
+    ~0.16 m, thesis ch. 6.1): the winner distance (Eq. 4.3), the linear control model c_p = M ũ_p
+    (Eq. 4.1/4.5) and its gradient step (Eq. 4.9) act on ũ_p = (α/π, d/d_scale). This is a choice of units
+    (the thesis gives none); it keeps Eq. 4.9 stable for any η ≤ 1, since |ũ|² ≤ 2.
+    """
+
+    mapping: str = "indirect"  # "direct" (ch. 4.1) or "indirect" (ch. 4.2)
+    neurons: int = 15  # N: the lattice is N × N (15 × 15 in the thesis, ch. 6.1)
+    gamma_alpha: float = 1.0  # γ_α of Eq. 4.3 (on α/π)
+    gamma_d: float = 1.0  # γ_d of Eq. 4.3 (on d / d_scale)
+    priority: int = 15  # |A(α)|: neurons with the most similar angles that compete (Eq. 4.4)
+    d_scale: float = 0.16  # m; also the top of the initial distance grid (ch. 6.1: 0.16 m per step)
+    c_max: float = 0.16  # c*: largest realisable wheel command, m/s (Eq. 4.5)
+
+    def __post_init__(self):
+        if self.mapping not in ("direct", "indirect"):
+            raise ValueError(f"mapping must be 'direct' or 'indirect', got {self.mapping!r}")
+        if self.neurons < 2:
+            raise ValueError(f"neurons must be >= 2, got {self.neurons}")
+        if not 1 <= self.priority <= self.neurons**2:
+            raise ValueError(f"priority must be in 1..{self.neurons**2}, got {self.priority}")
+        for name in ("gamma_alpha", "gamma_d", "d_scale", "c_max"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"{name} must be a positive finite number, got {v}")
+
+    @property
+    def size(self) -> int:
+        """Number of neurons, N²."""
+        return self.neurons * self.neurons
+
+    def to_dict(self) -> dict:
+        return asdict(self)

@@ -1,0 +1,82 @@
+"""The Kohonen part shared by every EKM: lattice, initial grid, winner search and input-weight update.
+
+Neuron ``i`` sits at lattice position ``(i // N, i % N)``: the row indexes direction α, the column
+distance d. Rows wrap around (direction is an angle), so the lattice is a cylinder.
+"""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+from jax import lax
+
+from ekm.config import EKMConfig
+
+
+def wrap(a):
+    """Wrap angles to (-π, π]."""
+    return jnp.pi - jnp.mod(jnp.pi - a, 2.0 * jnp.pi)
+
+
+def initial_weights(cfg: EKMConfig):
+    """Input weights w_i = (α_i, d_i) ``(N², 2)`` on a regular grid over the sensory space (ch. 6.1).
+
+    α covers the circle in N equal sectors (centres), d covers [0, d_scale] in N equal steps.
+    """
+    n = cfg.neurons
+    alpha = -jnp.pi + (jnp.arange(n) + 0.5) * (2.0 * jnp.pi / n)
+    d = jnp.linspace(0.0, cfg.d_scale, n)
+    aa, dd = jnp.meshgrid(alpha, d, indexing="ij")
+    return jnp.stack([aa.ravel(), dd.ravel()], axis=-1).astype(jnp.float32)
+
+
+def neighbourhood(cfg: EKMConfig, k, sigma):
+    """G(k, i) of Eq. 4.7: a Gaussian of the lattice distance from winner ``k``, width ``sigma`` (N²,)."""
+    n = cfg.neurons
+    r, c = jnp.divmod(jnp.arange(n * n), n)
+    kr, kc = jnp.divmod(k, n)
+    dr = jnp.abs(r - kr)
+    dr = jnp.minimum(dr, n - dr)
+    dc = c - kc
+    return jnp.exp(-(dr * dr + dc * dc).astype(jnp.float32) / (2.0 * sigma * sigma))
+
+
+def units(cfg: EKMConfig):
+    """(π, d_scale): one map unit of each input component, in (rad, m) (see :class:`EKMConfig`)."""
+    return jnp.asarray([jnp.pi, cfg.d_scale], dtype=jnp.float32)
+
+
+def scaled(u, cfg: EKMConfig):
+    """ũ = (α/π, d/d_scale): the input in the map's units (see :class:`EKMConfig`)."""
+    return u / units(cfg)
+
+
+def relative(u, w, cfg: EKMConfig):
+    """u - w_i for every neuron ``(N², 2)`` in map units, with the angle difference wrapped."""
+    diff = u - w
+    return scaled(diff.at[..., 0].set(wrap(diff[..., 0])), cfg)
+
+
+def winner(w, u, cfg: EKMConfig):
+    """Winning neuron k for input ``u`` = (α, d) (Eq. 4.2–4.4).
+
+    Direction has priority: only the ``cfg.priority`` neurons whose angles are closest to α (the set
+    A(α) of Eq. 4.4) compete, and among them the weighted distance of Eq. 4.3,
+    D² = γ_α (α - α_i)² + γ_d (d - d_i)², angles wrapped, is minimised.
+    """
+    diff = relative(u, w, cfg)
+    dalpha = jnp.abs(diff[:, 0])
+    if cfg.priority < cfg.size:
+        # A(α): the `priority` smallest |α - α_i|; ties at the boundary are kept (Eq. 4.4 holds for them).
+        kth = -lax.top_k(-dalpha, cfg.priority)[0][-1]
+        in_a = dalpha <= kth
+    else:
+        in_a = jnp.ones_like(dalpha, dtype=bool)
+    dist2 = cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
+    return jnp.argmin(jnp.where(in_a, dist2, jnp.inf))
+
+
+def update_inputs(w, v, g, eta, cfg: EKMConfig):
+    """Eq. 4.7: Δw_i = η G(k, i) (v - w_i), angle difference wrapped, α_i re-wrapped."""
+    diff = relative(v, w, cfg) * units(cfg)  # back to (rad, m)
+    w = w + (eta * g)[:, None] * diff
+    return w.at[:, 0].set(wrap(w[:, 0]))

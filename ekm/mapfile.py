@@ -1,0 +1,139 @@
+"""Save and load trained maps: ``.npz`` without pickle plus JSON metadata (DESIGN §3).
+
+A map file holds the maps of every training trial stacked along a leading axis:
+
+- ``w`` ``(R, N², 2)`` float32 input weights (α_i rad, d_i m);
+- ``M`` ``(R, N², 2, 2)`` (indirect) or ``c`` ``(R, N², 2)`` (direct) float32 outputs;
+- ``metadata``: a JSON string — format version, mapping kind, lattice size, every hyper-parameter
+  (:class:`ekm.config.EKMConfig` under ``"ekm"``, the training protocol, the robot), training steps,
+  seed, package and JAX versions, and the training curve.
+
+Files are written atomically (temporary file in the same directory, then rename), so an interrupted
+save never leaves a half-written map. Loading checks the format version, the keys, shapes, dtypes and
+finiteness and raises :class:`ekm.errors.InputError` naming the file and exactly what is wrong.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import zipfile
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from ekm.config import EKMConfig
+from ekm.direct import DirectEKM
+from ekm.errors import InputError
+from ekm.indirect import IndirectEKM
+
+FORMAT = "ekm-map"
+VERSION = 1
+
+
+@dataclass(frozen=True)
+class SavedMaps:
+    """Maps of R trials (a stacked pytree), their configuration and metadata."""
+
+    ekm: DirectEKM | IndirectEKM
+    cfg: EKMConfig
+    meta: dict
+
+    @property
+    def trials(self) -> int:
+        return int(self.ekm.w.shape[0])
+
+
+def _output_name(mapping: str) -> str:
+    return "M" if mapping == "indirect" else "c"
+
+
+def save_maps(path, ekm_stack, cfg: EKMConfig, meta: dict | None = None) -> Path:
+    """Write the stacked maps ``ekm_stack`` (leading trial axis) to ``path`` atomically; returns the path."""
+    import jax
+
+    from ekm import __version__
+
+    path = Path(path)
+    out = _output_name(cfg.mapping)
+    arrays = {"w": np.asarray(ekm_stack.w, np.float32), out: np.asarray(ekm_stack[1], np.float32)}
+    if arrays["w"].ndim == 2:  # a single map: give it a trial axis
+        arrays = {k: v[None] for k, v in arrays.items()}
+    metadata = {"format": FORMAT, "version": VERSION, "mapping": cfg.mapping, "neurons": cfg.neurons,
+                "trials": int(arrays["w"].shape[0]), "ekm": cfg.to_dict(),
+                "package_version": __version__, "jax_version": jax.__version__, **(meta or {})}
+    text = json.dumps(metadata, allow_nan=False)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            np.savez(fh, metadata=np.array(text), **arrays)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def load_maps(path) -> SavedMaps:
+    """Read a map file written by :func:`save_maps`, checking everything (see module docstring)."""
+    path = Path(path)
+    where = str(path)
+    if not path.is_file():
+        raise InputError(f"{where}: no such map file")
+    if not zipfile.is_zipfile(path):
+        raise InputError(f"{where}: not a map file (not an .npz archive)")
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            arrays = {k: data[k] for k in data.files}
+    except (zipfile.BadZipFile, OSError, EOFError) as exc:
+        raise InputError(f"{where}: not a map file (cannot read it as .npz: {exc})") from None
+    except ValueError as exc:  # e.g. an object array, which would need pickle
+        raise InputError(f"{where}: refused ({exc})") from None
+    if "metadata" not in arrays:
+        raise InputError(f"{where}: not an ekm map file (no 'metadata' entry)")
+    try:
+        meta = json.loads(str(arrays.pop("metadata")))
+    except (json.JSONDecodeError, TypeError) as exc:
+        raise InputError(f"{where}: metadata is not valid JSON ({exc})") from None
+    if not isinstance(meta, dict) or meta.get("format") != FORMAT:
+        raise InputError(f"{where}: not an ekm map file (metadata format is {meta.get('format')!r})"
+                         if isinstance(meta, dict) else f"{where}: metadata must be a JSON object")
+    if meta.get("version") != VERSION:
+        raise InputError(f"{where}: map format version {meta.get('version')!r} is not supported "
+                         f"(this ekm reads version {VERSION})")
+    try:
+        known = {f.name for f in fields(EKMConfig)}
+        cfg = EKMConfig(**{k: v for k, v in meta["ekm"].items() if k in known})
+    except (KeyError, TypeError, ValueError) as exc:
+        raise InputError(f"{where}: metadata 'ekm' is invalid ({exc})") from None
+    out = _output_name(cfg.mapping)
+    expected = {"w": (cfg.size, 2), out: (cfg.size, 2, 2) if out == "M" else (cfg.size, 2)}
+    extra = set(arrays) - set(expected)
+    if extra:
+        raise InputError(f"{where}: unexpected arrays {sorted(extra)} for a {cfg.mapping} map")
+    trials = None
+    for name, shape in expected.items():
+        if name not in arrays:
+            raise InputError(f"{where}: missing array {name!r} of a {cfg.mapping} map")
+        a = arrays[name]
+        if a.dtype.kind != "f":
+            raise InputError(f"{where}: array {name!r} has dtype {a.dtype}, expected floating point")
+        if a.ndim != len(shape) + 1 or a.shape[1:] != shape:
+            raise InputError(f"{where}: array {name!r} has shape {a.shape}, expected (trials, {', '.join(map(str, shape))})")
+        if trials is not None and a.shape[0] != trials:
+            raise InputError(f"{where}: array {name!r} has {a.shape[0]} trials, 'w' has {trials}")
+        trials = a.shape[0]
+        if not np.all(np.isfinite(a)):
+            raise InputError(f"{where}: array {name!r} contains NaN or infinite values")
+    if trials == 0:
+        raise InputError(f"{where}: the file holds no maps (0 trials)")
+    import jax.numpy as jnp
+
+    w, o = jnp.asarray(arrays["w"], jnp.float32), jnp.asarray(arrays[out], jnp.float32)
+    ekm = IndirectEKM(w, o) if cfg.mapping == "indirect" else DirectEKM(w, o)
+    return SavedMaps(ekm=ekm, cfg=cfg, meta=meta)

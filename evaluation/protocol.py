@@ -1,0 +1,88 @@
+"""The chapter 6.1 test: from the arena centre, a fixed sequence of random targets, no learning.
+
+For each target the robot is driven by the map until it stops (every wheel command rounds to zero,
+"motor control c = 0", Eq. 6.1) or a step cap is reached, then the next target is presented from
+where it stands. Sub-step traces give first-passage times and path lengths at 16 ms resolution.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+
+from ekm import maps
+from ekm.config import EKMConfig
+from robots.kinematics import RobotState, advance, egocentric, is_stop_command, motor_setpoint
+from robots.params import KHEPERA, RobotParams
+
+#: Tolerances ε of P(ε), T(ε), D(ε), in metres (thesis ch. 6.1; 25 mm is the robot's radius).
+EPSILONS = (0.005, 0.010, 0.025)
+
+
+class TargetRecord(NamedTuple):
+    """What happened at one target (arrays gain leading axes under vmap)."""
+
+    error: jax.Array  # m: distance centre → target after stopping (ε_i of Eq. 6.1)
+    capped: jax.Array  # bool: the step cap was hit before the robot stopped
+    straight: jax.Array  # m: l_i, straight distance from the previous target (or the start)
+    hit: jax.Array  # (len(EPSILONS),) bool: came closer than ε, with or without stopping
+    time: jax.Array  # (len(EPSILONS),) steps until first closer than ε (t_i(ε) of Eq. 6.2)
+    path: jax.Array  # (len(EPSILONS),) m travelled until first closer than ε (d_i(ε) of Eq. 6.3)
+    steps: jax.Array  # int: control steps spent on this target
+
+
+def _drive_to(ekm, robot: RobotState, target, previous, noise, cfg: EKMConfig, params: RobotParams, eps):
+    """Drive to one ``target`` for at most ``len(noise)`` steps. ``previous``: where l_i is measured from."""
+    n = params.substeps(params.target_period)
+    n_eps = eps.shape[0]
+
+    def body(carry, xi):
+        robot, stopped, hit, time, path, travelled, k = carry
+        u = egocentric(robot.pose, target, jnp)
+        c_p, _ = maps.control(ekm, u, cfg)
+        stop_now = stopped | is_stop_command(c_p, params, jnp)
+        # Once stopped the set-point is zero: the wheels spin down (motor lag) and the robot comes to rest.
+        setpoint = jnp.where(stop_now, 0.0, motor_setpoint(c_p, xi, params, jnp))
+        before = robot.pose[:2]
+        robot, trace = advance(robot, setpoint, n, params, jnp)
+        xy = jnp.concatenate([before[None, :], trace[:, :2]], axis=0)  # (n+1, 2)
+        seg = jnp.linalg.norm(jnp.diff(xy, axis=0), axis=-1)  # (n,)
+        cum = travelled + jnp.cumsum(seg)
+        dist = jnp.linalg.norm(trace[:, :2] - target, axis=-1)  # (n,)
+        inside = dist[None, :] < eps[:, None]  # (n_eps, n)
+        first = jnp.argmax(inside, axis=1)
+        new_hit = ~hit & jnp.any(inside, axis=1)
+        time = jnp.where(new_hit, k + (first + 1.0) / n, time)
+        path = jnp.where(new_hit, cum[first], path)
+        travelled = cum[-1]
+        k = jnp.where(stop_now, k, k + 1)
+        return (robot, stop_now, hit | new_hit, time, path, travelled, k), None
+
+    straight = jnp.linalg.norm(target - previous)
+    d0 = jnp.linalg.norm(robot.pose[:2] - target)
+    hit0 = d0 < eps  # already there
+    init = (robot, jnp.asarray(False), hit0, jnp.zeros(n_eps), jnp.zeros(n_eps), jnp.asarray(0.0), jnp.asarray(0))
+    (robot, stopped, hit, time, path, _, k), _ = jax.lax.scan(body, init, noise)
+    error = jnp.linalg.norm(robot.pose[:2] - target)
+    return robot, TargetRecord(error, ~stopped, straight, hit, time, path, k)
+
+
+@partial(jax.jit, static_argnames=("cfg", "cap", "params"))
+def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
+    """The ch. 6.1 test of one map: visit ``targets`` ``(N, 2)`` in order from ``start_pose``.
+
+    Returns one :class:`TargetRecord` per target (leading axis N). ``vmap`` it over maps for trials.
+    """
+    noise = jax.random.normal(key, (targets.shape[0], cap, 2))
+    eps = jnp.asarray(EPSILONS, jnp.float32)
+    robot = RobotState(jnp.asarray(start_pose, jnp.float32), jnp.zeros(2, jnp.float32))
+    previous = jnp.concatenate([robot.pose[None, :2], targets[:-1]], axis=0)
+
+    def body(robot, x):
+        target, prev, xi = x
+        return _drive_to(ekm, robot, target, prev, xi, cfg, params, eps)
+
+    return jax.lax.scan(body, robot, (targets, previous, noise))[1]
