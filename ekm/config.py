@@ -22,7 +22,7 @@ class EKMConfig:
     neurons: int = 15  # N: the lattice is N × N (15 × 15 in the thesis, ch. 6.1)
     gamma_alpha: float = 1.0  # γ_α of Eq. 4.3 (on α/π)
     gamma_d: float = 1.0  # γ_d of Eq. 4.3 (on d / d_scale)
-    priority: int = 15  # |A(α)|: neurons with the most similar angles that compete (Eq. 4.4)
+    priority: int | None = None  # |A(α)| of Eq. 4.4: neurons of most similar angle that compete (None: N)
     d_scale: float = 0.16  # m; also the top of the initial distance grid (ch. 6.1: 0.16 m per step)
     c_max: float = 0.16  # c*: largest realisable wheel command, m/s (Eq. 4.5)
 
@@ -31,12 +31,17 @@ class EKMConfig:
             raise ValueError(f"mapping must be 'direct' or 'indirect', got {self.mapping!r}")
         if self.neurons < 2:
             raise ValueError(f"neurons must be >= 2, got {self.neurons}")
-        if not 1 <= self.priority <= self.neurons**2:
+        if self.priority is not None and not 1 <= self.priority <= self.neurons**2:
             raise ValueError(f"priority must be in 1..{self.neurons**2}, got {self.priority}")
         for name in ("gamma_alpha", "gamma_d", "d_scale", "c_max"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise ValueError(f"{name} must be a positive finite number, got {v}")
+
+    @property
+    def a_size(self) -> int:
+        """|A(α)|: ``priority``, or one lattice row (N neurons) by default."""
+        return self.neurons if self.priority is None else self.priority
 
     @property
     def size(self) -> int:

@@ -59,15 +59,15 @@ def relative(u, w, cfg: EKMConfig):
 def winner(w, u, cfg: EKMConfig):
     """Winning neuron k for input ``u`` = (α, d) (Eq. 4.2–4.4).
 
-    Direction has priority: only the ``cfg.priority`` neurons whose angles are closest to α (the set
+    Direction has priority: only the ``cfg.a_size`` neurons whose angles are closest to α (the set
     A(α) of Eq. 4.4) compete, and among them the weighted distance of Eq. 4.3,
     D² = γ_α (α - α_i)² + γ_d (d - d_i)², angles wrapped, is minimised.
     """
     diff = relative(u, w, cfg)
     dalpha = jnp.abs(diff[:, 0])
-    if cfg.priority < cfg.size:
-        # A(α): the `priority` smallest |α - α_i|; ties at the boundary are kept (Eq. 4.4 holds for them).
-        kth = -lax.top_k(-dalpha, cfg.priority)[0][-1]
+    if cfg.a_size < cfg.size:
+        # A(α): the `a_size` smallest |α - α_i|; ties at the boundary are kept (Eq. 4.4 holds for them).
+        kth = -lax.top_k(-dalpha, cfg.a_size)[0][-1]
         in_a = dalpha <= kth
     else:
         in_a = jnp.ones_like(dalpha, dtype=bool)

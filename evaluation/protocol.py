@@ -86,3 +86,26 @@ def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, pa
         return _drive_to(ekm, robot, target, prev, xi, cfg, params, eps)
 
     return jax.lax.scan(body, robot, (targets, previous, noise))[1]
+
+
+def test_targets(n: int, arena, *, seed: int = 0, margin: float = 0.1):
+    """The fixed test sequence: ``n`` points uniform in the arena, ``margin`` from its border (ch. 6.1)."""
+    lo = jnp.asarray([margin, margin], jnp.float32)
+    hi = jnp.asarray(arena, jnp.float32) - margin
+    return jax.random.uniform(jax.random.PRNGKey(seed), (n, 2), jnp.float32, lo, hi)
+
+
+def evaluate(ekm_stack, cfg: EKMConfig, arena, *, targets: int = 50, seed: int = 0, cap: int = 50,
+             params: RobotParams = KHEPERA) -> TargetRecord:
+    """Run the ch. 6.1 test for every map of ``ekm_stack`` (leading trial axis) on the same target
+    sequence (from ``seed``), each trial with its own actuator noise. Returns records ``(trials, targets)``."""
+    pts = test_targets(targets, arena, seed=seed)
+    centre = jnp.asarray([0.5 * arena[0], 0.5 * arena[1], 0.0], jnp.float32)
+    trials = ekm_stack.w.shape[0]
+    keys = jax.random.split(jax.random.fold_in(jax.random.PRNGKey(seed), 1), trials)
+    return _evaluate_stack(ekm_stack, pts, centre, keys, cfg=cfg, cap=cap, params=params)
+
+
+@partial(jax.jit, static_argnames=("cfg", "cap", "params"))
+def _evaluate_stack(ekm_stack, pts, centre, keys, *, cfg, cap, params):
+    return jax.vmap(lambda m, k: run_test(m, pts, centre, k, cfg=cfg, cap=cap, params=params))(ekm_stack, keys)

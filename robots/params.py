@@ -6,7 +6,7 @@ Every number names its source. SI units throughout: metres, seconds, radians.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 #: Khepera I short-range IR sensor directions (rad, robot frame, 0 = ahead, + = left): about ±85°, ±45°,
 #: ±10° in front and two at the back (thesis Fig. 4.3; K-Team Khepera user manual, sensor layout).
@@ -62,6 +62,10 @@ class RobotParams:
         if n < 1 or abs(n * self.dt - period) > 1e-9:
             raise ValueError(f"control period {period} s is not a whole number of {self.dt} s sub-steps")
         return n
+
+    def to_dict(self) -> dict:
+        """Every parameter, for the metadata of saved maps."""
+        return asdict(self)
 
     @property
     def max_step_distance(self) -> float:

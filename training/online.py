@@ -33,8 +33,8 @@ class TrainConfig:
     trials: int = 5  # independent trials, averaged (ch. 6.1)
     arena: tuple[float, float] = (1.0, 1.0)  # m; the open-arena world's size
     margin: float = 0.1  # m; targets keep this far from the border
-    target_range: float | None = 0.2  # m; new targets lie this close to the robot (None: anywhere in the arena)
-    reach: float = 0.005  # m; a target closer than this is done
+    target_range: float | None = None  # m; new targets lie this close to the robot (None: anywhere in the arena)
+    reach: float = 0.0  # m; > 0: a target closer than this (or a stop) ends it early; 0: it stays (dwell)
     patience: int = 20  # steps on one target before a new one is drawn
     schedules: Schedules = field(default_factory=Schedules)
 

@@ -36,9 +36,9 @@ class Schedule:
 class Schedules:
     """All training schedules. Defaults: see the module docstring and README."""
 
-    eta: Schedule = Schedule(0.1, 0.01, 0.6)  # η of Eq. 4.7 and 4.9
-    sigma: Schedule = Schedule(2.0, 0.5, 0.6)  # G(k, i) width, in lattice units
-    explore: Schedule = Schedule(0.5, 0.0, 0.3)  # std of command noise, as a fraction of c*
+    eta: Schedule = Schedule(0.1, 0.005, 0.6)  # η of Eq. 4.7 and 4.9
+    sigma: Schedule = Schedule(3.0, 0.5, 0.6)  # G(k, i) width, in lattice units
+    explore: Schedule = Schedule(0.5, 0.05, 0.5)  # std of command noise, as a fraction of c*
 
     def to_dict(self) -> dict:
         return asdict(self)

@@ -1,0 +1,54 @@
+"""The training driver: trials, chunks, progress and the periodic ch. 6.1 test (imperative shell).
+
+:func:`train` runs ``tcfg.steps`` steps for ``tcfg.trials`` independent trials, in jitted chunks
+(``training.online.train_chunk``), and after every ``eval_every`` steps calls ``on_eval(step, maps)``
+— the ch. 6.1 test in practice — so a caller can record the learning curve. Trials get independent
+PRNG keys split from one ``seed``: the same seed gives the same maps.
+"""
+
+from __future__ import annotations
+
+import jax
+
+from ekm.config import EKMConfig
+from robots.params import KHEPERA, RobotParams
+from training.online import TrainConfig, start, train_chunk
+
+#: Longest chunk of one jitted scan; shorter chunks only cost more dispatches, longer ones hold the
+#: progress bar still.
+MAX_CHUNK = 5000
+
+
+def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int | None = None, on_eval=None,
+          progress: bool = False, params: RobotParams = KHEPERA):
+    """Train ``tcfg.trials`` maps online; returns the stacked maps (leading trial axis).
+
+    ``on_eval(step, maps)`` is called at step 0, after every ``eval_every`` steps and at the end.
+    """
+    key_init, key_run = jax.random.split(jax.random.PRNGKey(seed))
+    trainees = jax.vmap(lambda k: start(k, cfg, tcfg))(jax.random.split(key_init, tcfg.trials))
+    every = eval_every or tcfg.steps
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=tcfg.steps, unit="step", desc=f"training {cfg.mapping} ({tcfg.trials} trials)",
+                   dynamic_ncols=True)
+    if on_eval:
+        on_eval(0, trainees.ekm)
+    done = 0
+    while done < tcfg.steps:
+        target = min(tcfg.steps, (done // every + 1) * every)
+        while done < target:
+            length = min(MAX_CHUNK, target - done)
+            keys = jax.random.split(jax.random.fold_in(key_run, done), tcfg.trials)
+            trainees = train_chunk(trainees, keys, float(done), length=length, cfg=cfg, tcfg=tcfg, params=params)
+            done += length
+            if bar is not None:
+                jax.block_until_ready(trainees)
+                bar.update(length)
+        if on_eval:
+            on_eval(done, trainees.ekm)
+    if bar is not None:
+        bar.close()
+    return trainees.ekm
