@@ -181,6 +181,138 @@ def _plot_worlds(worlds, directory: str) -> list:
     return written
 
 
+def _output_path(text: str, option: str, suffix: str):
+    """Check an output path before long work starts: not a directory, the right suffix."""
+    from pathlib import Path
+
+    path = Path(text)
+    if path.is_dir():
+        raise InputError(f"{option} {text}: is a directory, expected a {suffix} file")
+    if path.suffix.lower() != suffix:
+        raise InputError(f"{option} {text}: expected a file name ending in {suffix}")
+    return path
+
+
+def _test_summary(maps, cfg, arena, targets: int, seed: int) -> dict:
+    """The ch. 6.1 test of stacked maps, summarised (E, P, T, D, capped)."""
+    from evaluation.metrics import summarize
+    from evaluation.protocol import evaluate
+
+    return summarize(evaluate(maps, cfg, arena, targets=targets, seed=seed))
+
+
+def _print_summary(s: dict, label: str) -> None:
+    eps = list(s["P"])
+    print(f"{label}: E = {s['E_mm']:.2f} mm over {s['trials']} trials x {s['targets']} targets "
+          f"({s['capped']} hit the step cap before stopping)")
+    print("  eps (mm)    " + "".join(f"{e:>9}" for e in eps))
+    for key, fmt in (("P", "{:9.3f}"), ("T", "{:9.2f}"), ("D", "{:9.3f}")):
+        print(f"  {key}(eps)      " + "".join(fmt.format(s[key][e]) if s[key][e] is not None else f"{'-':>9}"
+                                          for e in eps))
+
+
+def cmd_train(args) -> None:
+    """Train EKMs online with the ch. 6.1 protocol and save them (DESIGN §3, §6)."""
+    import time
+
+    import numpy as np
+
+    from ekm.config import EKMConfig
+    from ekm.mapfile import save_maps
+    from robots.params import KHEPERA
+    from robots.worldfile import load_world
+    from training.online import TrainConfig
+    from training.run import train
+
+    out = _output_path(args.out, "--out", ".npz")
+    plot = _output_path(args.plot, "--plot", ".png") if args.plot else None
+    world = load_world(args.world)
+    if world.walls or world.obstacles or world.unforeseen or world.moving:
+        raise InputError(f"--world {args.world}: training needs an obstacle-free world (thesis ch. 4.3)")
+    cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons)
+    tcfg = TrainConfig(steps=args.steps, trials=args.trials, arena=tuple(world.size))
+    curve = []
+
+    def on_eval(step, maps):
+        s = _test_summary(maps, cfg, tcfg.arena, args.eval_targets, args.test_seed)
+        curve.append({"step": step, "E_mm": s["E_mm"], "P": s["P"], "T": s["T"], "D": s["D"], "capped": s["capped"]})
+        if show_progress(args):
+            from tqdm import tqdm
+
+            tqdm.write(f"  step {step:>7}: E = {s['E_mm']:7.2f} mm, P(25) = {s['P']['25']:.2f}")
+
+    t0 = time.perf_counter()
+    maps = train(cfg, tcfg, seed=args.seed, eval_every=args.eval_every, on_eval=on_eval, progress=show_progress(args))
+    seconds = time.perf_counter() - t0
+    meta = {"steps": tcfg.steps, "seed": args.seed, "world": world.name, "train": tcfg.to_dict(),
+            "robot": KHEPERA.to_dict(), "test": {"targets": args.eval_targets, "seed": args.test_seed},
+            "curve": curve, "seconds": seconds}
+    save_maps(out, maps, cfg, meta)
+    if plot:
+        from evaluation.plots import save_figure_6_1_6_2
+
+        save_figure_6_1_6_2([{"label": cfg.mapping, "curve": curve, "summary": curve[-1] | {"trials": tcfg.trials},
+                              "w": np.asarray(maps.w[0])}], plot)
+    if args.json:
+        print_json({"mapping": cfg.mapping, "neurons": cfg.neurons, "steps": tcfg.steps, "trials": tcfg.trials,
+                    "seconds": round(seconds, 3), "curve": curve, "out": str(out)})
+        return
+    final = curve[-1]
+    print(f"trained {tcfg.trials} {cfg.mapping} {cfg.neurons}x{cfg.neurons} maps for {tcfg.steps} steps "
+          f"in {seconds:.1f} s -> {out}")
+    _print_summary(final | {"trials": tcfg.trials, "targets": args.eval_targets}, "ch. 6.1 test after training")
+    if plot:
+        print(f"plot written to {plot}")
+
+
+def cmd_evaluate(args) -> None:
+    """Run the ch. 6.1 test on saved maps (and draw Fig. 6.1/6.2 for them)."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from ekm.mapfile import load_maps
+
+    plot = _output_path(args.plot, "--plot", ".png") if args.plot else None
+    loaded = [load_maps(path) for path in args.maps]
+    results = []
+    for path, saved in zip(args.maps, loaded):
+        arena = tuple(saved.meta.get("train", {}).get("arena", (1.0, 1.0)))
+        s = _test_summary(saved.ekm, saved.cfg, arena, args.targets, args.seed)
+        results.append({"file": path, "mapping": saved.cfg.mapping, **s})
+    if plot:
+        from evaluation.plots import save_figure_6_1_6_2
+
+        save_figure_6_1_6_2([{"label": f"{r['mapping']} ({Path(r['file']).name})", "curve": saved.meta.get("curve", []),
+                              "summary": r, "w": np.asarray(saved.ekm.w[0])} for r, saved in zip(results, loaded)],
+                            plot)
+    if args.json:
+        keys = ("E_mm", "P", "T", "D", "trials", "targets", "capped")
+        print_json({k: results[0][k] for k in keys} if len(results) == 1
+                   else {"maps": [{"file": r["file"], "mapping": r["mapping"], **{k: r[k] for k in keys}} for r in results]})
+        return
+    for r in results:
+        _print_summary(r, f"{r['file']} ({r['mapping']})")
+    if plot:
+        print(f"plot written to {plot}")
+
+
+def cmd_bench(args) -> None:
+    """Quick speed check: JAX training loop vs the NumPy reference (full study: benchmarks/)."""
+    from training.bench import quick
+
+    result = quick(args.mapping)
+    if args.json:
+        print_json(result)
+        return
+    print(f"online training, {result['mapping']} {result['neurons']}x{result['neurons']} map, "
+          f"{result['trials']} trials, on {', '.join(result['devices'])} (jax {result['jax_version']})")
+    print(f"  JAX (lax.scan + vmap): {result['jax_trial_steps_per_s']:>10,.0f} trial-steps/s "
+          f"(first call with compilation {result['jax_first_call_s']:.1f} s)")
+    print(f"  NumPy reference:       {result['numpy_trial_steps_per_s']:>10,.0f} trial-steps/s")
+    print(f"  ratio {result['ratio']:.1f}x; 100,000 steps x 5 trials take about {result['protocol_estimate_s']:.0f} s")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="ekm", description="Extended Kohonen Maps for a Khepera-like robot (Low 2002).")
     from ekm import __version__
@@ -206,6 +338,35 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="PNG", help="draw cells, graph, route and checkpoints to PNG")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=cmd_plan)
+    p = sub.add_parser("train", help="train EKMs online (thesis ch. 4.3) and test them as in ch. 6.1")
+    p.add_argument("--mapping", choices=("direct", "indirect"), required=True, help="direct (ch. 4.1) or indirect (ch. 4.2)")
+    p.add_argument("--neurons", type=positive_int, default=15, metavar="N", help="N x N lattice (default 15)")
+    p.add_argument("--steps", type=positive_int, default=100_000, help="training steps of 1.024 s (default 100000)")
+    p.add_argument("--trials", type=positive_int, default=5, help="independent trials (default 5)")
+    p.add_argument("--seed", type=nonneg_int, default=0, help="training seed (default 0)")
+    p.add_argument("--eval-every", type=positive_int, default=10_000, metavar="STEPS",
+                   help="run the ch. 6.1 test every STEPS steps (default 10000)")
+    p.add_argument("--eval-targets", type=positive_int, default=50, metavar="N", help="test targets (default 50)")
+    p.add_argument("--test-seed", type=nonneg_int, default=0, help="seed of the test targets (default 0)")
+    p.add_argument("--world", default="open-arena", help="obstacle-free world whose arena is used (default open-arena)")
+    p.add_argument("--out", required=True, metavar="MAP.npz", help="where to save the trained maps")
+    p.add_argument("--plot", metavar="PNG", help="draw Fig. 6.1/6.2 for the trained maps")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=cmd_train)
+
+    p = sub.add_parser("evaluate", help="run the ch. 6.1 positioning test on saved maps")
+    p.add_argument("maps", nargs="+", metavar="MAP.npz", help="map file(s) from ekm train; several share one plot")
+    p.add_argument("--targets", type=positive_int, default=50, help="test targets (default 50)")
+    p.add_argument("--seed", type=nonneg_int, default=0, help="seed of the test targets and noise (default 0)")
+    p.add_argument("--plot", metavar="PNG", help="draw Fig. 6.1/6.2 with all maps on the same axes")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=cmd_evaluate)
+
+    p = sub.add_parser("bench", help="quick speed check of the training loop (JAX vs NumPy)")
+    p.add_argument("--mapping", choices=("direct", "indirect"), default="indirect")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=cmd_bench)
+
     return parser
 
 
