@@ -1,0 +1,121 @@
+"""Saved maps: npz without pickle, JSON metadata, atomic writes, checked loads (DESIGN §3)."""
+
+import json
+import zipfile
+
+import jax
+import numpy as np
+import pytest
+
+from ekm import maps
+from ekm.config import EKMConfig
+from ekm.errors import InputError
+from ekm.mapfile import VERSION, load_maps, save_maps
+
+
+def stacked(cfg, trials=3):
+    return jax.vmap(lambda k: maps.init(k, cfg))(jax.random.split(jax.random.PRNGKey(0), trials))
+
+
+@pytest.mark.parametrize("mapping", ["direct", "indirect"])
+def test_round_trip_keeps_every_array_and_hyper_parameter(tmp_path, mapping):
+    cfg = EKMConfig(mapping=mapping, neurons=6, gamma_d=2.5, priority=4)
+    ekm = stacked(cfg)
+    ekm = type(ekm)(ekm.w, ekm[1] + 0.01)
+    path = save_maps(tmp_path / "m.npz", ekm, cfg, {"steps": 123, "seed": 7, "curve": [{"step": 0, "E_mm": 1.0}]})
+    loaded = load_maps(path)
+    assert loaded.cfg == cfg and loaded.trials == 3
+    assert type(loaded.ekm) is type(ekm)
+    for a, b in zip(loaded.ekm, ekm):
+        np.testing.assert_array_equal(np.asarray(a), np.asarray(b))
+    assert loaded.meta["steps"] == 123 and loaded.meta["version"] == VERSION
+    assert loaded.meta["jax_version"] == jax.__version__
+    with np.load(path, allow_pickle=False) as data:  # plain arrays: loads without pickle
+        assert set(data.files) == {"metadata", "w", "M" if mapping == "indirect" else "c"}
+
+
+def test_save_is_atomic_and_leaves_no_partial_file(tmp_path, monkeypatch):
+    cfg = EKMConfig(neurons=4)
+    target = tmp_path / "m.npz"
+
+    def broken(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(np, "savez", broken)
+    with pytest.raises(OSError):
+        save_maps(target, stacked(cfg), cfg)
+    assert list(tmp_path.iterdir()) == []
+
+
+def rewrite(path, tmp_path, **changes):
+    """A copy of the map file at ``path`` with some entries replaced (None drops one)."""
+    with np.load(path, allow_pickle=False) as data:
+        arrays = {k: data[k] for k in data.files}
+    for k, v in changes.items():
+        if v is None:
+            arrays.pop(k)
+        else:
+            arrays[k] = v
+    out = tmp_path / "bad.npz"
+    np.savez(out, **arrays)
+    return out
+
+
+@pytest.fixture
+def good(tmp_path):
+    cfg = EKMConfig(neurons=4)
+    return save_maps(tmp_path / "good.npz", stacked(cfg, 2), cfg)
+
+
+def meta_of(path):
+    with np.load(path, allow_pickle=False) as data:
+        return json.loads(str(data["metadata"]))
+
+
+@pytest.mark.parametrize("case, message", [
+    ("nan", "contains NaN"),
+    ("shape", "has shape"),
+    ("dtype", "dtype"),
+    ("missing", "missing array 'M'"),
+    ("version", "version 99 is not supported"),
+    ("format", "not an ekm map file"),
+    ("trials", "trials"),
+    ("object", "refused"),
+])
+def test_bad_map_files_are_refused_with_a_clear_message(good, tmp_path, case, message):
+    w = np.load(good)["w"]
+    meta = meta_of(good)
+    if case == "nan":
+        bad = rewrite(good, tmp_path, w=np.where(np.arange(w.size).reshape(w.shape) == 5, np.nan, w))
+    elif case == "shape":
+        bad = rewrite(good, tmp_path, w=w[:, :10])
+    elif case == "dtype":
+        bad = rewrite(good, tmp_path, w=w.astype(np.int32))
+    elif case == "missing":
+        bad = rewrite(good, tmp_path, M=None)
+    elif case == "version":
+        bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta | {"version": 99})))
+    elif case == "format":
+        bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta | {"format": "other"})))
+    elif case == "trials":
+        bad = rewrite(good, tmp_path, w=np.concatenate([w, w]))
+    else:
+        bad = tmp_path / "bad.npz"
+        np.savez(bad, metadata=np.array(json.dumps(meta)), w=np.array([{"a": 1}], dtype=object))
+    with pytest.raises(InputError, match=message) as info:
+        load_maps(bad)
+    assert str(bad) in str(info.value) and "\n" not in str(info.value)
+
+
+def test_not_a_map_file(tmp_path):
+    text = tmp_path / "notes.npz"
+    text.write_text("hello")
+    with pytest.raises(InputError, match="not an .npz archive"):
+        load_maps(text)
+    with pytest.raises(InputError, match="no such map file"):
+        load_maps(tmp_path / "missing.npz")
+    other = tmp_path / "other.npz"
+    with zipfile.ZipFile(other, "w") as z:
+        z.writestr("readme.txt", "hi")
+    with pytest.raises(InputError):
+        load_maps(other)
