@@ -87,3 +87,20 @@ def random_bitmap(shape: tuple[int, int], density: float, rng: np.random.Generat
         y, x = rng.integers(0, ny), rng.integers(0, nx)
         occupied[y:y + h, x:x + w] = True
     return np.where(occupied, OCCUPIED, FREE).astype(np.int32)
+
+
+def main() -> None:
+    """Print the Fig. 3.3 reconstruction as the thesis does: (a) the bitmap, (b) its slippery-cell labelling."""
+    from planner.slippery import label_slippery
+
+    W, robot, goal = fig_3_3()
+    labels = label_slippery(W, robot)
+    marks = {robot: "X", goal: "Y"}
+    print("Fig. 3.3(a) bitmap (0 free, -1 occupied):")
+    print(format_labels(W, marks))
+    print(f"\nFig. 3.3(b) slippery cells, labelled from the robot's cell X: {int(labels.max())} cells")
+    print(format_labels(labels, marks))
+
+
+if __name__ == "__main__":
+    main()
