@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
 
 from evaluation.protocol import EPSILONS
 from robots.plot import save_figure
@@ -35,6 +36,7 @@ def figure_6_1_6_2(results: list[dict]) -> Figure:
             vals = [np.nan if s[key][str(e)] is None else s[key][str(e)] for e in eps_mm]
             ax.plot(eps_mm, vals, "o-", color=colour, label=label, ms=5)
     axes[0].set(title="(a) E during training (Eq. 6.1)", xlabel="training steps", ylabel="E (mm)", yscale="log")
+    axes[0].xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x / 1000:g}k" if x else "0"))
     axes[1].set(title="(b) reaching probability P(ε)", xlabel="ε (mm)", ylabel="P(ε)", ylim=(0, 1.05))
     axes[2].set(title="(c) time-to-target T(ε) (Eq. 6.2)", xlabel="ε (mm)", ylabel="steps per metre")
     axes[3].set(title="(d) deviation D(ε) (Eq. 6.3)", xlabel="ε (mm)", ylabel="|path - straight| / straight")
