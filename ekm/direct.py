@@ -12,7 +12,7 @@ import jax
 import jax.numpy as jnp
 
 from ekm.config import EKMConfig
-from ekm.kohonen import initial_weights, neighbourhood, update_inputs, winner
+from ekm.kohonen import forward_prior, initial_weights, neighbourhood, scaled, update_inputs, winner
 
 
 class DirectEKM(NamedTuple):
@@ -22,10 +22,17 @@ class DirectEKM(NamedTuple):
     c: jax.Array
 
 
-def init(key, cfg: EKMConfig, spread: float = 0.5) -> DirectEKM:
-    """Input weights on the regular grid (ch. 6.1); outputs c_i uniform in ±spread·c*."""
-    c = jax.random.uniform(key, (cfg.size, 2), jnp.float32, -spread * cfg.c_max, spread * cfg.c_max)
-    return DirectEKM(w=initial_weights(cfg), c=c)
+def init(key, cfg: EKMConfig, spread: float = 0.0) -> DirectEKM:
+    """Input weights on the regular grid (ch. 6.1); outputs c_i = ``cfg.m_init`` · M_fwd w̃_i
+    (:func:`ekm.kohonen.forward_prior`, clipped to ±c*) plus uniform noise in ±spread·c*.
+
+    The same untrained start as the indirect map (both mappings share the training protocol): forward
+    motion, turning towards the target, wrong gain.
+    """
+    w = initial_weights(cfg)
+    c = jnp.clip(scaled(w, cfg) @ (cfg.m_init * forward_prior(cfg)).T, -cfg.c_max, cfg.c_max)
+    c = c + jax.random.uniform(key, (cfg.size, 2), jnp.float32, -spread * cfg.c_max, spread * cfg.c_max)
+    return DirectEKM(w=w, c=c)
 
 
 def control(ekm: DirectEKM, u, cfg: EKMConfig):

@@ -12,7 +12,7 @@ import jax
 import jax.numpy as jnp
 
 from ekm.config import EKMConfig
-from ekm.kohonen import initial_weights, neighbourhood, relative, scaled, update_inputs, winner
+from ekm.kohonen import forward_prior, initial_weights, neighbourhood, relative, scaled, update_inputs, winner
 
 
 class IndirectEKM(NamedTuple):
@@ -24,14 +24,15 @@ class IndirectEKM(NamedTuple):
 
 
 def init(key, cfg: EKMConfig, spread: float = 0.0) -> IndirectEKM:
-    """Input weights on the regular grid (ch. 6.1); M_i random, N(0, (spread·c*/√2)²) per entry.
+    """Input weights on the regular grid (ch. 6.1); M_i = ``cfg.m_init`` · M_fwd (:func:`forward_prior`)
+    plus N(0, (spread·c*/√2)²) per entry (``spread`` = 0 by default: exploration comes from the
+    command noise of training, ``training.schedules``).
 
-    An untrained map thus drives the robot with random but bounded commands — the exploration that
-    lets self-organisation start (ch. 4.3: "Initially ... the motor control vectors c_p generated are
-    inaccurate").
+    An untrained map thus drives forward and turns towards the target, but with the wrong gain — the
+    inaccurate start of ch. 4.3 ("Initially ... the motor control vectors c_p generated are inaccurate").
     """
     M = jax.random.normal(key, (cfg.size, 2, 2), dtype=jnp.float32) * (spread * cfg.c_max / jnp.sqrt(2.0))
-    return IndirectEKM(w=initial_weights(cfg), M=M)
+    return IndirectEKM(w=initial_weights(cfg), M=M + cfg.m_init * forward_prior(cfg))
 
 
 def local_input(u, w, cfg: EKMConfig):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import jax.numpy as jnp
 
 from ekm.config import EKMConfig
+from robots.params import KHEPERA
 
 
 def wrap(a):
@@ -26,6 +27,22 @@ def initial_weights(cfg: EKMConfig):
     d = jnp.linspace(0.0, cfg.d_scale, n)
     aa, dd = jnp.meshgrid(alpha, d, indexing="ij")
     return jnp.stack([aa.ravel(), dd.ravel()], axis=-1).astype(jnp.float32)
+
+
+def forward_prior(cfg: EKMConfig, wheel_base: float = KHEPERA.wheel_base, period: float = KHEPERA.target_period):
+    """M_fwd ``(2, 2)``: c = M_fwd ũ, the one-step inverse kinematics linearised at α = 0, in map units.
+
+    A chord of length d at bearing α is one arc that turns the heading by 2α; near α = 0 its wheel
+    commands are v_{l,r} = d/T ∓ α b/T, i.e. columns (∓π b/T) for ũ_α = α/π and (d_scale/T) for
+    ũ_d = d/d_scale (T = 1.024 s control period, b the wheel base; robots.params.KHEPERA). Scaled by
+    ``cfg.m_init`` it is the untrained map's output: "drive forward, turn towards the target" with a
+    deliberately wrong gain — the thesis' untrained map is "inaccurate" (ch. 4.3), but one with no
+    preferred direction of travel has two mirror-image solutions (forward and backward arcs reach the
+    same displacement) and self-organisation then settles on either, trial by trial.
+    """
+    turn = jnp.pi * wheel_base / period
+    ahead = cfg.d_scale / period
+    return jnp.asarray([[-turn, ahead], [turn, ahead]], dtype=jnp.float32)
 
 
 def neighbourhood(cfg: EKMConfig, k, sigma):
