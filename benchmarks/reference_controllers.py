@@ -1,99 +1,79 @@
-"""Analytic reference controllers on the fixed simulator, scored by the ch. 6.1 test and metrics.
+"""Analytic reference controllers on the same simulator, scored by the same ch. 6.1 test and metrics.
 
-Not an EKM: these show which (E, T(25), D(25)) the simulator itself allows in the 1 x 1 m arena, so
-that the trained maps' figures can be judged against them (thesis ch. 6.1 quotes T ~ 9 steps/m and
-D < 9 % for the indirect map). One 1.024 s step holds one wheel command, i.e. the robot moves on one
-circular arc per step; every family below is a different rule for choosing that arc:
+Not EKMs: they show which (E, T(25), D(25)) the simulator itself allows in the 1 × 1 m arena, so the
+trained maps can be judged against them (the thesis quotes T ≈ 9 steps/m and D < 9 % for its indirect
+map in Webots). One 1.024 s step holds one wheel command, so the robot moves on one circular arc per
+step; each controller is a rule for choosing that arc:
 
-- ``arc``: the exact inverse of the one-step kinematics (heading change 2 alpha, chord d), scaled
-  down to c* when infeasible — the command an ideal indirect EKM would give (Eq. 4.5 with a perfect M);
-  ``back`` lets it drive backwards to targets behind (|alpha| > pi/2), as the thesis' maps do (Fig. 6.2:
-  neurons at alpha = +-3);
-- ``turn``: rotate in place by alpha when |alpha| > thr (and the target is not within reach), else ``arc``.
+- ``arc``: the exact inverse of the one-step kinematics — a chord of length d at bearing α is the arc
+  that turns the heading by 2α — driving backwards to targets behind (|α| > π/2), scaled down to c*
+  when infeasible. It is what a perfect indirect map would command (Eq. 4.5 with exact M_k).
+- ``turn > θ``: rotate in place by α when |α| > θ (and the target is more than 3 cm away), else ``arc``.
 
-Run: python -m benchmarks.reference_controllers  (takes ~1 min; numbers go in the tuning report).
+Run from the repository root (about a minute)::
+
+    python benchmarks/reference_controllers.py
 """
 
 from __future__ import annotations
 
-import sys
+import jax
+import jax.numpy as jnp
 
-import numpy as np
-
-from robots.kinematics import egocentric, initial_state, is_stop_command, step, wrap_angle
+from evaluation.metrics import summarize
+from evaluation.protocol import drive_test, test_targets
+from robots.kinematics import wrap_angle
 from robots.params import KHEPERA as P
 
 T, B, CMAX = P.target_period, P.wheel_base, P.max_wheel_speed
 
 
-def arc(u, back):
-    a, d = u
-    rev = back and abs(a) > np.pi / 2
-    a2 = wrap_angle(a - np.pi) if rev else a
-    g = a2 / np.sin(a2) if abs(a2) > 1e-6 else 1.0
-    s = d * g / T * (-1.0 if rev else 1.0)
+def _limit(c):
+    """Shorten an arc to the wheel limit c*, keeping its shape."""
+    return c * jnp.minimum(1.0, CMAX / jnp.maximum(jnp.max(jnp.abs(c)), 1e-12))
+
+
+def arc(u):
+    """Wheel commands of the one-step arc to u = (α, d); backwards for targets behind."""
+    a, d = u[0], u[1]
+    back = jnp.abs(a) > jnp.pi / 2
+    a2 = jnp.where(back, wrap_angle(a - jnp.pi, jnp), a)
+    gain = jnp.where(jnp.abs(a2) > 1e-6, a2 / jnp.sin(jnp.where(jnp.abs(a2) > 1e-6, a2, 1.0)), 1.0)
+    s = jnp.where(back, -1.0, 1.0) * d * gain / T
     w = 2.0 * a2 / T
-    c = np.array([s - w * B / 2, s + w * B / 2])
-    if np.any(np.abs(c) > CMAX):
-        c = c * CMAX / np.max(np.abs(c))  # keep the arc's shape, shorten it
-    return c
+    return _limit(jnp.stack([s - w * B / 2, s + w * B / 2]))
 
 
-def turn(u, back, thr):
-    a, d = u
-    a2 = wrap_angle(a - np.pi) if (back and abs(a) > np.pi / 2) else a
-    if abs(a2) > thr and d > 0.03:
-        w = a2 / T
-        c = np.array([-w * B / 2, w * B / 2])
-        if np.any(np.abs(c) > CMAX):
-            c = c * CMAX / np.max(np.abs(c))
-        return c
-    return arc(u, back)
+def turn_then_arc(threshold):
+    """Rotate in place towards the target when it is more than ``threshold`` rad off the line of travel."""
+
+    def control(u):
+        a2 = jnp.where(jnp.abs(u[0]) > jnp.pi / 2, wrap_angle(u[0] - jnp.pi, jnp), u[0])
+        spin = _limit(jnp.stack([-a2 * B / (2 * T), a2 * B / (2 * T)]))
+        return jnp.where((jnp.abs(a2) > threshold) & (u[1] > 0.03), spin, arc(u))
+
+    return control
 
 
-def run(ctrl, seed, n_targets=50, cap=50, eps=0.025):
-    rng = np.random.default_rng(seed)
-    targets = rng.uniform(0.1, 0.9, (n_targets, 2))
-    robot = initial_state(np.array([0.5, 0.5, 0.0]))
-    prev = robot.pose[:2].copy()
-    errs, ts, ds, caps = [], [], [], 0
-    for tgt in targets:
-        l = np.linalg.norm(tgt - prev)
-        hit, path = (None if l >= eps else (0.0, 0.0)), 0.0
-        for k in range(cap):
-            c = ctrl(egocentric(robot.pose, tgt))
-            if is_stop_command(c):
-                break
-            p0 = robot.pose[:2]
-            robot, tr = step(robot, c, rng.normal(size=2), 64)
-            seg = np.linalg.norm(np.diff(np.vstack([p0, tr[:, :2]]), axis=0), axis=1)
-            cum = path + np.cumsum(seg)
-            dist = np.linalg.norm(tr[:, :2] - tgt, axis=1)
-            if hit is None and np.any(dist < eps):
-                j = int(np.argmax(dist < eps))
-                hit = (k + (j + 1) / 64, cum[j])
-            path = cum[-1]
-        else:
-            caps += 1
-        robot, _ = step(robot, np.zeros(2), np.zeros(2), 64)  # coast to rest
-        errs.append(np.linalg.norm(robot.pose[:2] - tgt))
-        prev = tgt
-        if hit:
-            ts.append(hit[0] / l)
-            ds.append(abs(hit[1] - l) / l)
-    return np.mean(errs), len(ts) / n_targets, np.mean(ts), np.mean(ds), caps
+def score(control, trials: int = 5, arena=(1.0, 1.0)) -> dict:
+    """The ch. 6.1 test (50 targets, seed 0, as ``ekm evaluate``) for ``trials`` noise draws."""
+    pts = test_targets(50, arena, seed=0)
+    centre = jnp.asarray([0.5 * arena[0], 0.5 * arena[1], 0.0])
+    keys = jax.random.split(jax.random.fold_in(jax.random.PRNGKey(0), 1), trials)
+    rec = jax.jit(jax.vmap(lambda k: drive_test(control, pts, centre, k)))(keys)
+    return summarize(rec)
 
 
-def main():
-    rows = [("arc, forward only", lambda u: arc(u, False)), ("arc, forward+backward", lambda u: arc(u, True))]
-    for thr in (1.2, 0.9, 0.6, 0.3, 0.15):
-        rows.append((f"turn if |a|>{thr}, fwd", lambda u, t=thr: turn(u, False, t)))
-        rows.append((f"turn if |a|>{thr}, fwd+back", lambda u, t=thr: turn(u, True, t)))
-    print(f"{'controller':28s} {'E mm':>6s} {'P25':>5s} {'T25':>6s} {'D25':>6s} caps   (5 seeds x 50 targets)")
-    for name, ctrl in rows:
-        r = np.array([run(ctrl, s)[:4] for s in range(5)]).mean(0)
-        print(f"{name:28s} {1000 * r[0]:6.2f} {r[1]:5.2f} {r[2]:6.2f} {r[3]:6.3f}", flush=True)
+def main() -> None:
+    rows = [("arc (exact one-step inverse)", arc)]
+    rows += [(f"turn in place if |α| > {t}, else arc", turn_then_arc(t)) for t in (1.2, 0.9, 0.6, 0.3)]
+    print("| reference controller | E (mm) | P(25) | T(25) steps/m | D(25) | capped |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for name, control in rows:
+        s = score(control)
+        print(f"| {name} | {s['E_mm']:.2f} | {s['P']['25']:.2f} | {s['T']['25']:.2f} | {s['D']['25']:.3f} | "
+              f"{s['capped']} |", flush=True)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

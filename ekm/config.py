@@ -25,11 +25,10 @@ class EKMConfig:
     priority: int | None = None  # |A(α)| of Eq. 4.4: neurons of most similar angle that compete (None: N)
     d_scale: float = 0.16  # m; also the top of the initial distance grid (ch. 6.1: 0.16 m per step)
     c_max: float = 0.16  # c*: largest realisable wheel command, m/s (Eq. 4.5)
-    # Initial outputs, as a fraction of the forward prior M_fwd (see ``ekm.kohonen.forward_prior``):
-    # the untrained map drives forward and turns towards the target, at half the right gain. Without
-    # this symmetry breaking (0 = M_i = 0, c_i = 0) online training picks forward or backward motion at
-    # random per trial and often collapses onto backward arcs (README / tuning report).
-    m_init: float = 0.5
+    # Initial outputs as a fraction of the forward reflex M_fwd (``ekm.kohonen.forward_prior``): the
+    # untrained robot drives straight ahead, at half speed one step length from the target, and cannot
+    # steer. 0 gives M_i = 0 (c_i = 0), which lets training settle on backward motion at random.
+    forward_init: float = 0.5
 
     def __post_init__(self):
         if self.mapping not in ("direct", "indirect"):
@@ -38,8 +37,8 @@ class EKMConfig:
             raise ValueError(f"neurons must be >= 2, got {self.neurons}")
         if self.priority is not None and not 1 <= self.priority <= self.neurons**2:
             raise ValueError(f"priority must be in 1..{self.neurons**2}, got {self.priority}")
-        if not (math.isfinite(self.m_init) and self.m_init >= 0):
-            raise ValueError(f"m_init must be a finite number >= 0, got {self.m_init}")
+        if not (math.isfinite(self.forward_init) and self.forward_init >= 0):
+            raise ValueError(f"forward_init must be a finite number >= 0, got {self.forward_init}")
         for name in ("gamma_alpha", "gamma_d", "d_scale", "c_max"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):

@@ -22,17 +22,12 @@ class DirectEKM(NamedTuple):
     c: jax.Array
 
 
-def init(key, cfg: EKMConfig, spread: float = 0.0) -> DirectEKM:
-    """Input weights on the regular grid (ch. 6.1); outputs c_i = ``cfg.m_init`` · M_fwd w̃_i
-    (:func:`ekm.kohonen.forward_prior`, clipped to ±c*) plus uniform noise in ±spread·c*.
-
-    The same untrained start as the indirect map (both mappings share the training protocol): forward
-    motion, turning towards the target, wrong gain.
-    """
+def init(cfg: EKMConfig) -> DirectEKM:
+    """An untrained map: input weights on the regular grid (ch. 6.1), outputs c_i = ``cfg.forward_init`` ·
+    M_fwd w̃_i — the same start as the indirect map (:func:`ekm.kohonen.forward_prior`): straight ahead,
+    no steering."""
     w = initial_weights(cfg)
-    c = jnp.clip(scaled(w, cfg) @ (cfg.m_init * forward_prior(cfg)).T, -cfg.c_max, cfg.c_max)
-    c = c + jax.random.uniform(key, (cfg.size, 2), jnp.float32, -spread * cfg.c_max, spread * cfg.c_max)
-    return DirectEKM(w=w, c=c)
+    return DirectEKM(w=w, c=scaled(w, cfg) @ (cfg.forward_init * forward_prior(cfg)).T)
 
 
 def control(ekm: DirectEKM, u, cfg: EKMConfig):

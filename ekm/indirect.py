@@ -23,16 +23,16 @@ class IndirectEKM(NamedTuple):
     M: jax.Array
 
 
-def init(key, cfg: EKMConfig, spread: float = 0.0) -> IndirectEKM:
-    """Input weights on the regular grid (ch. 6.1); M_i = ``cfg.m_init`` · M_fwd (:func:`forward_prior`)
-    plus N(0, (spread·c*/√2)²) per entry (``spread`` = 0 by default: exploration comes from the
-    command noise of training, ``training.schedules``).
+def init(cfg: EKMConfig) -> IndirectEKM:
+    """An untrained map: input weights on the regular grid (ch. 6.1), M_i = ``cfg.forward_init`` · M_fwd.
 
-    An untrained map thus drives forward and turns towards the target, but with the wrong gain — the
-    inaccurate start of ch. 4.3 ("Initially ... the motor control vectors c_p generated are inaccurate").
+    The untrained robot drives straight ahead and cannot steer (:func:`ekm.kohonen.forward_prior`) —
+    the inaccurate start of ch. 4.3 ("Initially, the EKM has not been trained and the motor control
+    vectors c_p generated are inaccurate"); the command noise of training (``training.schedules``)
+    does the exploring.
     """
-    M = jax.random.normal(key, (cfg.size, 2, 2), dtype=jnp.float32) * (spread * cfg.c_max / jnp.sqrt(2.0))
-    return IndirectEKM(w=initial_weights(cfg), M=M + cfg.m_init * forward_prior(cfg))
+    M = jnp.broadcast_to(cfg.forward_init * forward_prior(cfg), (cfg.size, 2, 2))
+    return IndirectEKM(w=initial_weights(cfg), M=M)
 
 
 def local_input(u, w, cfg: EKMConfig):

@@ -22,9 +22,9 @@ def module_of(ekm_or_cfg):
     return indirect if isinstance(ekm_or_cfg, IndirectEKM) else direct
 
 
-def init(key, cfg: EKMConfig) -> EKM:
+def init(cfg: EKMConfig) -> EKM:
     """A fresh, untrained map of ``cfg.mapping`` kind."""
-    return module_of(cfg).init(key, cfg)
+    return module_of(cfg).init(cfg)
 
 
 def control(ekm: EKM, u, cfg: EKMConfig):

@@ -34,15 +34,14 @@ class TargetRecord(NamedTuple):
     steps: jax.Array  # int: control steps spent on this target
 
 
-def _drive_to(ekm, robot: RobotState, target, previous, noise, cfg: EKMConfig, params: RobotParams, eps):
+def _drive_to(control, robot: RobotState, target, previous, noise, params: RobotParams, eps):
     """Drive to one ``target`` for at most ``len(noise)`` steps. ``previous``: where l_i is measured from."""
     n = params.substeps(params.target_period)
     n_eps = eps.shape[0]
 
     def body(carry, xi):
         robot, stopped, hit, time, path, travelled, k = carry
-        u = egocentric(robot.pose, target, jnp)
-        c_p, _ = maps.control(ekm, u, cfg)
+        c_p = control(egocentric(robot.pose, target, jnp))
         stop_now = stopped | is_stop_command(c_p, params, jnp)
         # Once stopped the set-point is zero: the wheels spin down (motor lag) and the robot comes to rest.
         setpoint = jnp.where(stop_now, 0.0, motor_setpoint(c_p, xi, params, jnp))
@@ -70,11 +69,12 @@ def _drive_to(ekm, robot: RobotState, target, previous, noise, cfg: EKMConfig, p
     return robot, TargetRecord(error, ~stopped, straight, hit, time, path, k)
 
 
-@partial(jax.jit, static_argnames=("cfg", "cap", "params"))
-def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
-    """The ch. 6.1 test of one map: visit ``targets`` ``(N, 2)`` in order from ``start_pose``.
+def drive_test(control, targets, start_pose, key, *, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
+    """The ch. 6.1 test of any controller: visit ``targets`` ``(N, 2)`` in order from ``start_pose``.
 
-    Returns one :class:`TargetRecord` per target (leading axis N). ``vmap`` it over maps for trials.
+    ``control(u_p) -> c`` maps the target input (α, d) to wheel commands; it must be a pure JAX function
+    (the whole test is one nested ``lax.scan``). Returns one :class:`TargetRecord` per target (leading
+    axis N). Used for the maps (:func:`run_test`) and for analytic reference controllers (benchmarks).
     """
     noise = jax.random.normal(key, (targets.shape[0], cap, 2))
     eps = jnp.asarray(EPSILONS, jnp.float32)
@@ -83,9 +83,15 @@ def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, pa
 
     def body(robot, x):
         target, prev, xi = x
-        return _drive_to(ekm, robot, target, prev, xi, cfg, params, eps)
+        return _drive_to(control, robot, target, prev, xi, params, eps)
 
     return jax.lax.scan(body, robot, (targets, previous, noise))[1]
+
+
+@partial(jax.jit, static_argnames=("cfg", "cap", "params"))
+def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
+    """The ch. 6.1 test of one map (:func:`drive_test` with c_p from Eq. 4.5 or c_k). ``vmap`` it over trials."""
+    return drive_test(lambda u: maps.control(ekm, u, cfg)[0], targets, start_pose, key, cap=cap, params=params)
 
 
 def test_targets(n: int, arena, *, seed: int = 0, margin: float = 0.1):

@@ -77,7 +77,7 @@ def test_eq_4_5_fallback_applies_when_a_single_wheel_exceeds_c_star():
 
 def test_indirect_update_follows_eq_4_7_and_4_9():
     cfg = EKMConfig(neurons=3, priority=3)
-    ekm = indirect.init(jax.random.PRNGKey(0), cfg)
+    ekm = indirect.init(cfg)
     ekm = ekm._replace(M=0.05 * jax.random.normal(jax.random.PRNGKey(1), ekm.M.shape))
     v, c_p, eta, sigma = jnp.asarray([0.4, 0.1]), jnp.asarray([0.05, 0.12]), 0.3, 0.8
     new = indirect.update(ekm, v, c_p, eta, sigma, cfg)
@@ -100,7 +100,7 @@ def test_indirect_update_follows_eq_4_7_and_4_9():
 
 def test_direct_update_pulls_outputs_towards_the_executed_command():
     cfg = EKMConfig(mapping="direct", neurons=3, priority=3)
-    ekm = direct.init(jax.random.PRNGKey(0), cfg)
+    ekm = direct.init(cfg)
     v, c_p = jnp.asarray([-0.7, 0.05]), jnp.asarray([0.02, 0.09])
     for _ in range(300):
         ekm = direct.update(ekm, v, c_p, 0.5, 0.5, cfg)
@@ -111,7 +111,7 @@ def test_direct_update_pulls_outputs_towards_the_executed_command():
 def test_maps_dispatch_on_the_configured_mapping():
     for mapping, cls in (("direct", direct.DirectEKM), ("indirect", indirect.IndirectEKM)):
         cfg = EKMConfig(mapping=mapping, neurons=4)
-        assert isinstance(maps.init(jax.random.PRNGKey(0), cfg), cls)
+        assert isinstance(maps.init(cfg), cls)
 
 
 @pytest.mark.parametrize("bad", [dict(mapping="both"), dict(neurons=1), dict(priority=0), dict(gamma_d=-1.0),
@@ -119,3 +119,14 @@ def test_maps_dispatch_on_the_configured_mapping():
 def test_config_refuses_bad_values(bad):
     with pytest.raises(ValueError):
         EKMConfig(**bad)
+
+
+@pytest.mark.parametrize("mapping", ["direct", "indirect"])
+def test_untrained_maps_drive_straight_ahead_and_cannot_steer(mapping):
+    """The forward reflex only breaks the forward/backward symmetry; it does not reach targets."""
+    cfg = EKMConfig(mapping=mapping)
+    ekm = maps.init(cfg)
+    for alpha in (-2.5, -1.0, 0.0, 0.7, 3.0):
+        c, _ = maps.control(ekm, jnp.asarray([alpha, 0.08]), cfg)
+        assert c[0] == pytest.approx(c[1], abs=1e-4)  # no turning, whatever the direction
+        assert c[0] > 0.0

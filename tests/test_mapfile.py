@@ -14,7 +14,10 @@ from ekm.mapfile import VERSION, load_maps, save_maps
 
 
 def stacked(cfg, trials=3):
-    return jax.vmap(lambda k: maps.init(k, cfg))(jax.random.split(jax.random.PRNGKey(0), trials))
+    """``trials`` different maps stacked along a leading axis (untrained ones, randomly perturbed)."""
+    one = maps.init(cfg)
+    keys = jax.random.split(jax.random.PRNGKey(0), len(one))
+    return type(one)(*(a + 0.01 * jax.random.normal(k, (trials,) + a.shape) for a, k in zip(one, keys)))
 
 
 @pytest.mark.parametrize("mapping", ["direct", "indirect"])
