@@ -66,7 +66,8 @@ def score(control, trials: int = 5, arena=(1.0, 1.0)) -> dict:
 
 def main() -> None:
     rows = [("arc (exact one-step inverse)", arc)]
-    rows += [(f"turn in place if |α| > {t}, else arc", turn_then_arc(t)) for t in (1.2, 0.9, 0.6, 0.3)]
+    rows += [(f"turn in place when the target is more than {t} rad off, else arc", turn_then_arc(t))
+             for t in (1.2, 0.9, 0.6, 0.3)]
     print("| reference controller | E (mm) | P(25) | T(25) steps/m | D(25) | capped |")
     print("|---|---:|---:|---:|---:|---:|")
     for name, control in rows:
