@@ -182,7 +182,9 @@ def _plot_worlds(worlds, directory: str) -> list:
 
 
 def _output_path(text: str, option: str, suffix: str):
-    """Check an output path before long work starts: not a directory, the right suffix."""
+    """Check an output path before long work starts: not a directory, the right suffix, a directory
+    that exists (it is created) and can be written."""
+    import os
     from pathlib import Path
 
     path = Path(text)
@@ -190,6 +192,12 @@ def _output_path(text: str, option: str, suffix: str):
         raise InputError(f"{option} {text}: is a directory, expected a {suffix} file")
     if path.suffix.lower() != suffix:
         raise InputError(f"{option} {text}: expected a file name ending in {suffix}")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"{option} {text}: cannot create its directory ({exc.strerror or exc})") from None
+    if not os.access(path.parent, os.W_OK):
+        raise InputError(f"{option} {text}: its directory is not writable")
     return path
 
 

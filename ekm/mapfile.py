@@ -16,8 +16,6 @@ finiteness and raises :class:`ekm.errors.InputError` naming the file and exactly
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 import zipfile
 from dataclasses import dataclass, fields
 from pathlib import Path
@@ -27,6 +25,7 @@ import numpy as np
 from ekm.config import EKMConfig
 from ekm.direct import DirectEKM
 from ekm.errors import InputError
+from ekm.files import atomic_write
 from ekm.indirect import IndirectEKM
 
 FORMAT = "ekm-map"
@@ -66,16 +65,8 @@ def save_maps(path, ekm_stack, cfg: EKMConfig, meta: dict | None = None) -> Path
                 "package_version": __version__, "jax_version": jax.__version__, **(meta or {})}
     text = json.dumps(metadata, allow_nan=False)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            np.savez(fh, metadata=np.array(text), **arrays)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_write(path) as tmp, open(tmp, "wb") as fh:
+        np.savez(fh, metadata=np.array(text), **arrays)
     return path
 
 
