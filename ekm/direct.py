@@ -9,7 +9,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import jax
-import jax.numpy as jnp
 
 from ekm.config import EKMConfig
 from ekm.kohonen import forward_prior, initial_weights, neighbourhood, scaled, update_inputs, winner

@@ -5,12 +5,10 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from ekm import maps
 from ekm.config import EKMConfig
-from robots.kinematics import RobotState
 from robots.params import KHEPERA
 from training import reference
-from training.online import TrainConfig, Trainee, start, train_step
+from training.online import TrainConfig, start, train_step
 
 STEPS = 60
 
