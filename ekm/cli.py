@@ -237,8 +237,11 @@ def cmd_train(args) -> None:
     world = load_world(args.world)
     if world.walls or world.obstacles or world.unforeseen or world.moving:
         raise InputError(f"--world {args.world}: training needs an obstacle-free world (thesis ch. 4.3)")
-    cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons)
-    tcfg = TrainConfig(steps=args.steps, trials=args.trials, arena=tuple(world.size))
+    try:
+        cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons)
+        tcfg = TrainConfig(steps=args.steps, trials=args.trials, arena=tuple(world.size))
+    except ValueError as exc:
+        raise InputError(f"ekm train: {exc}") from None
     curve = []
 
     def on_eval(step, maps):

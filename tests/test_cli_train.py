@@ -65,6 +65,7 @@ def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     (["train", "--mapping", "both", "--out", "x.npz"], "invalid choice"),
     (["train", "--mapping", "direct", "--steps", "0", "--out", "x.npz"], "must be > 0"),
     (["train", "--mapping", "direct", "--trials", "two", "--out", "x.npz"], "whole number"),
+    (["train", "--mapping", "direct", "--neurons", "1", "--out", "x.npz"], "neurons must be >= 2"),
     (["train", "--mapping", "direct"], "--out"),
     (["train", "--mapping", "direct", "--out", "x.txt"], "ending in .npz"),
     (["train", "--mapping", "direct", "--out", "x.npz", "--world", "three-rooms"], "obstacle-free"),
