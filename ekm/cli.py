@@ -288,13 +288,12 @@ def cmd_evaluate(args) -> None:
     loaded = [load_maps(path) for path in args.maps]
     results = []
     for path, saved in zip(args.maps, loaded):
-        arena = tuple(saved.meta.get("train", {}).get("arena", (1.0, 1.0)))
-        s = _test_summary(saved.ekm, saved.cfg, arena, args.targets, args.seed)
+        s = _test_summary(saved.ekm, saved.cfg, saved.arena, args.targets, args.seed)
         results.append({"file": path, "mapping": saved.cfg.mapping, **s})
     if plot:
         from evaluation.plots import save_figure_6_1_6_2
 
-        save_figure_6_1_6_2([{"label": f"{r['mapping']} ({Path(r['file']).name})", "curve": saved.meta.get("curve", []),
+        save_figure_6_1_6_2([{"label": f"{r['mapping']} ({Path(r['file']).name})", "curve": list(saved.curve),
                               "summary": r, "w": np.asarray(saved.ekm.w[0])} for r, saved in zip(results, loaded)],
                             plot)
     if args.json:

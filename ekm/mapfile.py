@@ -16,6 +16,7 @@ finiteness and raises :class:`ekm.errors.InputError` naming the file and exactly
 from __future__ import annotations
 
 import json
+import math
 import zipfile
 from dataclasses import dataclass, fields
 from pathlib import Path
@@ -39,6 +40,8 @@ class SavedMaps:
     ekm: DirectEKM | IndirectEKM
     cfg: EKMConfig
     meta: dict
+    arena: tuple[float, float] = (1.0, 1.0)  # m: the arena the maps were trained and are tested in
+    curve: tuple = ()  # the training curve: ({"step", "E_mm", ...}, ...)
 
     @property
     def trials(self) -> int:
@@ -123,8 +126,28 @@ def load_maps(path) -> SavedMaps:
             raise InputError(f"{where}: array {name!r} contains NaN or infinite values")
     if trials == 0:
         raise InputError(f"{where}: the file holds no maps (0 trials)")
+    arena, curve = _checked_protocol(meta, where)
     import jax.numpy as jnp
 
     w, o = jnp.asarray(arrays["w"], jnp.float32), jnp.asarray(arrays[out], jnp.float32)
     ekm = IndirectEKM(w, o) if cfg.mapping == "indirect" else DirectEKM(w, o)
-    return SavedMaps(ekm=ekm, cfg=cfg, meta=meta)
+    return SavedMaps(ekm=ekm, cfg=cfg, meta=meta, arena=arena, curve=curve)
+
+
+def _finite(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def _checked_protocol(meta: dict, where: str):
+    """The arena (``train.arena``) and the training curve of the metadata, checked."""
+    train = meta.get("train", {})
+    if not isinstance(train, dict):
+        raise InputError(f"{where}: metadata 'train' must be an object")
+    arena = train.get("arena", [1.0, 1.0])
+    if not (isinstance(arena, list) and len(arena) == 2 and all(_finite(a) and a > 0 for a in arena)):
+        raise InputError(f"{where}: metadata 'train.arena' must be two positive numbers, got {arena!r}")
+    curve = meta.get("curve", [])
+    if not isinstance(curve, list) or not all(isinstance(p, dict) and _finite(p.get("step")) and _finite(p.get("E_mm"))
+                                              for p in curve):
+        raise InputError(f"{where}: metadata 'curve' must be a list of {{step, E_mm, ...}} points")
+    return (float(arena[0]), float(arena[1])), tuple(curve)

@@ -84,6 +84,8 @@ def meta_of(path):
     ("format", "not an ekm map file"),
     ("trials", "trials"),
     ("object", "refused"),
+    ("arena", "train.arena"),
+    ("curve", "'curve'"),
 ])
 def test_bad_map_files_are_refused_with_a_clear_message(good, tmp_path, case, message):
     w = np.load(good)["w"]
@@ -100,6 +102,10 @@ def test_bad_map_files_are_refused_with_a_clear_message(good, tmp_path, case, me
         bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta | {"version": 99})))
     elif case == "format":
         bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta | {"format": "other"})))
+    elif case == "arena":
+        bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta | {"train": {"arena": [1.0, "wide"]}})))
+    elif case == "curve":
+        bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta | {"curve": [{"step": 0}]})))
     elif case == "trials":
         bad = rewrite(good, tmp_path, w=np.concatenate([w, w]))
     else:
