@@ -15,7 +15,7 @@ import jax.numpy as jnp
 
 from ekm import maps
 from ekm.config import EKMConfig
-from robots.kinematics import RobotState, advance, egocentric, is_stop_command, motor_setpoint
+from robots.kinematics import RobotState, advance, egocentric, is_stop_command, quantize_command
 from robots.params import KHEPERA, RobotParams
 
 #: Tolerances ε of P(ε), T(ε), D(ε), in metres (thesis ch. 6.1; 25 mm is the robot's radius).
@@ -32,6 +32,7 @@ class TargetRecord(NamedTuple):
     time: jax.Array  # (len(EPSILONS),) steps until first closer than ε (t_i(ε) of Eq. 6.2)
     path: jax.Array  # (len(EPSILONS),) m travelled until first closer than ε (d_i(ε) of Eq. 6.3)
     steps: jax.Array  # int: control steps spent on this target
+    bearing: jax.Array  # rad: α of u_p when the target is presented (where the robot has to turn)
 
 
 def _drive_to(control, robot: RobotState, target, previous, noise, params: RobotParams, eps):
@@ -44,9 +45,9 @@ def _drive_to(control, robot: RobotState, target, previous, noise, params: Robot
         c_p = control(egocentric(robot.pose, target, jnp))
         stop_now = stopped | is_stop_command(c_p, params, jnp)
         # Once stopped the set-point is zero: the wheels spin down (motor lag) and the robot comes to rest.
-        setpoint = jnp.where(stop_now, 0.0, motor_setpoint(c_p, xi, params, jnp))
+        setpoint = jnp.where(stop_now, 0.0, quantize_command(c_p, params, jnp))
         before = robot.pose[:2]
-        robot, trace = advance(robot, setpoint, n, params, jnp)
+        robot, trace = advance(robot, setpoint, xi, n, params, jnp)
         xy = jnp.concatenate([before[None, :], trace[:, :2]], axis=0)  # (n+1, 2)
         seg = jnp.linalg.norm(jnp.diff(xy, axis=0), axis=-1)  # (n,)
         cum = travelled + jnp.cumsum(seg)
@@ -61,12 +62,12 @@ def _drive_to(control, robot: RobotState, target, previous, noise, params: Robot
         return (robot, stop_now, hit | new_hit, time, path, travelled, k), None
 
     straight = jnp.linalg.norm(target - previous)
-    d0 = jnp.linalg.norm(robot.pose[:2] - target)
+    alpha0, d0 = egocentric(robot.pose, target, jnp)
     hit0 = d0 < eps  # already there
     init = (robot, jnp.asarray(False), hit0, jnp.zeros(n_eps), jnp.zeros(n_eps), jnp.asarray(0.0), jnp.asarray(0))
     (robot, stopped, hit, time, path, _, k), _ = jax.lax.scan(body, init, noise)
     error = jnp.linalg.norm(robot.pose[:2] - target)
-    return robot, TargetRecord(error, ~stopped, straight, hit, time, path, k)
+    return robot, TargetRecord(error, ~stopped, straight, hit, time, path, k, alpha0)
 
 
 def drive_test(control, targets, start_pose, key, *, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
@@ -76,7 +77,8 @@ def drive_test(control, targets, start_pose, key, *, cap: int = 50, params: Robo
     (the whole test is one nested ``lax.scan``). Returns one :class:`TargetRecord` per target (leading
     axis N). Used for the maps (:func:`run_test`) and for analytic reference controllers (benchmarks).
     """
-    noise = jax.random.normal(key, (targets.shape[0], cap, 2))
+    noise = jax.random.uniform(key, (targets.shape[0], cap) + params.noise_shape(params.target_period),
+                               minval=-1.0, maxval=1.0)
     eps = jnp.asarray(EPSILONS, jnp.float32)
     robot = RobotState(jnp.asarray(start_pose, jnp.float32), jnp.zeros(2, jnp.float32))
     previous = jnp.concatenate([robot.pose[None, :2], targets[:-1]], axis=0)

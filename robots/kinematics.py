@@ -6,11 +6,13 @@ jitted training loops): pass ``xp=np`` or ``xp=jnp``. They are pure and shape-po
 
 Model (DESIGN §2), per control period of ``n`` sub-steps of ``dt``:
 
-1. the command ``c = (v_l, v_r)`` is clipped to ``±c*``, rounded to the speed unit and multiplied by
-   ``1 + σ ξ`` per wheel, with ``ξ ~ N(0, 1)`` drawn by the caller (noise drawn up front);
+1. the command ``c = (v_l, v_r)`` is clipped to ``±c*`` and rounded to the speed unit (the set-point);
 2. each wheel follows that set-point with a first-order lag,
    ``s_j = c + (s_0 - c) exp(-j dt / τ)``, held constant through sub-step ``j``;
-3. the body integrates by explicit Euler, exactly as pymunk's ``space.step`` integrates a body whose
+3. each wheel slips: its speed is multiplied by ``1 + σ ξ``, ``ξ ~ U(-1, 1)`` redrawn every
+   ``noise_period`` (Webots' slip noise, :class:`~robots.params.RobotParams`), with ξ drawn by the caller
+   (noise drawn up front, shape ``params.noise_shape(period)`` per control period);
+4. the body integrates by explicit Euler, exactly as pymunk's ``space.step`` integrates a body whose
    velocity is set before each step: ``θ_{j+1} = θ_j + ω_j dt``,
    ``p_{j+1} = p_j + v_j (cos θ_j, sin θ_j) dt`` with ``v = (v_l + v_r)/2``, ``ω = (v_r - v_l)/b``.
 
@@ -49,12 +51,6 @@ def quantize_command(command, params: RobotParams = KHEPERA, xp=np):
     return c
 
 
-def motor_setpoint(command, noise, params: RobotParams = KHEPERA, xp=np):
-    """Wheel set-points actually applied for ``command`` ``(..., 2)`` with standard-normal ``noise`` ``(..., 2)``:
-    the sent command (:func:`quantize_command`) times ``1 + σ ξ`` — 10 % actuator noise (thesis ch. 6.1)."""
-    return quantize_command(command, params, xp) * (1.0 + params.actuator_noise * noise)
-
-
 def is_stop_command(command, params: RobotParams = KHEPERA, xp=np):
     """True where both wheels of ``command`` ``(..., 2)`` are sent as zero: the robot has stopped (Eq. 6.1)."""
     return xp.all(quantize_command(command, params, xp) == 0, axis=-1)
@@ -75,13 +71,23 @@ def wheel_speeds(wheels, setpoint, n: int, params: RobotParams = KHEPERA, xp=np)
     return c + (s0 - c) * decay, end
 
 
+def slip(speeds, noise, params: RobotParams = KHEPERA, xp=np):
+    """Wheel ``speeds`` ``(..., n, 2)`` with Webots slip noise: times ``1 + σ ξ`` for ``noise`` ξ ``(..., K, 2)``
+    in [-1, 1], each draw held for ``n / K`` sub-steps (10 % actuator noise of thesis ch. 6.1)."""
+    n, k = speeds.shape[-2], noise.shape[-2]
+    if n % k:
+        raise ValueError(f"{k} slip draws do not divide {n} sub-steps")
+    return speeds * (1.0 + params.actuator_noise * xp.repeat(noise, n // k, axis=-2))
+
+
 def body_twist(speeds, params: RobotParams = KHEPERA):
     """Forward speed ``v = (v_l + v_r)/2`` and turn rate ``ω = (v_r - v_l)/b`` of wheel ``speeds`` ``(..., 2)``."""
     return 0.5 * (speeds[..., 0] + speeds[..., 1]), (speeds[..., 1] - speeds[..., 0]) / params.wheel_base
 
 
-def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, xp=np):
-    """Move the robot through ``n`` sub-steps towards wheel ``setpoint`` ``(..., 2)``.
+def advance(state: RobotState, setpoint, noise, n: int, params: RobotParams = KHEPERA, xp=np):
+    """Move the robot through ``n`` sub-steps towards wheel ``setpoint`` ``(..., 2)`` (a sent command, see
+    :func:`quantize_command`) with slip ``noise`` ``(..., K, 2)`` in [-1, 1] (:func:`slip`).
 
     Returns ``(new_state, trace)`` where ``trace`` ``(..., n, 3)`` holds the pose after every sub-step
     (``trace[..., -1, :] == new_state.pose``, headings wrapped to (-π, π]); path lengths and
@@ -89,7 +95,7 @@ def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, 
     """
     dt = params.dt
     speeds, wheels = wheel_speeds(state.wheels, setpoint, n, params, xp)
-    v, omega = body_twist(speeds, params)  # (..., n) each
+    v, omega = body_twist(slip(speeds, noise, params, xp), params)  # (..., n) each
     theta0 = state.pose[..., 2:3]
     heading_inc = xp.cumsum(omega * dt, axis=-1)  # θ_{j+1} - θ_0
     theta_before = theta0 + heading_inc - omega * dt  # θ_j, heading during sub-step j
@@ -100,8 +106,8 @@ def advance(state: RobotState, setpoint, n: int, params: RobotParams = KHEPERA, 
 
 
 def step(state: RobotState, command, noise, n: int, params: RobotParams = KHEPERA, xp=np):
-    """One control period: apply ``command`` with actuator ``noise`` and advance ``n`` sub-steps."""
-    return advance(state, motor_setpoint(command, noise, params, xp), n, params, xp)
+    """One control period: send ``command`` and advance ``n`` sub-steps with slip ``noise`` ``(..., K, 2)``."""
+    return advance(state, quantize_command(command, params, xp), noise, n, params, xp)
 
 
 def wrap_angle(a, xp=np):

@@ -41,7 +41,14 @@ class RobotParams:
 
     Wheel commands ``c = (v_l, v_r)`` are in m/s. Before they reach the motors they are clipped to
     ``±max_wheel_speed`` (c*) and rounded to the Khepera's speed unit; each wheel then follows its
-    command with a first-order lag and 10 % multiplicative noise.
+    command with a first-order lag, and its speed slips by up to ±10 %.
+
+    The 10 % noise of thesis ch. 6.1 is Webots' ``DifferentialWheels.slipNoise`` (default 0.1): "a noise
+    component of +/- 10 percent is added to the command for each simulation step ... different for each
+    wheel ... uniform distribution" (Webots Reference Manual, DifferentialWheels). So each wheel's speed is
+    multiplied by ``1 + σ ξ``, ``ξ ~ U(-1, 1)``, redrawn every ``noise_period`` (Webots' default
+    ``basicTimeStep`` of 32 ms, of which 1.024 s and 0.128 s are 32 and 4). ``noise_period =
+    target_period`` gives the harsher model of one draw per target-reaching command.
     """
 
     radius: float = 0.025  # body radius 25 mm (thesis ch. 6.1 and 6.2.2)
@@ -49,7 +56,8 @@ class RobotParams:
     max_wheel_speed: float = 0.16  # c*: one 1.024 s step moves at most ~0.16 m (thesis ch. 6.1)
     speed_unit: float = 0.008  # Khepera speed commands are integers of 8 mm/s (K-Team manual); 0 = exact
     motor_tau: float = 0.02  # first-order motor lag (s): the non-linearity of Eq. 4.1's discussion
-    actuator_noise: float = 0.10  # 10 % actuator noise (thesis ch. 6.1, Webots)
+    actuator_noise: float = 0.10  # σ: wheel speeds slip by U(-σ, σ) (thesis ch. 6.1: 10 %; Webots slipNoise)
+    noise_period: float = 0.032  # slip redrawn every Webots simulation step (basicTimeStep 32 ms)
     target_period: float = 1.024  # target-reaching control period (thesis ch. 6.1)
     avoid_period: float = 0.128  # obstacle-avoidance control period (thesis ch. 6.2.1)
     dt: float = 0.016  # physics sub-step: 64 per target-reaching step, 8 per avoidance step
@@ -62,6 +70,13 @@ class RobotParams:
         if n < 1 or abs(n * self.dt - period) > 1e-9:
             raise ValueError(f"control period {period} s is not a whole number of {self.dt} s sub-steps")
         return n
+
+    def noise_shape(self, period: float) -> tuple[int, int]:
+        """Shape ``(K, 2)`` of the slip draws ξ for one control period: K = period / ``noise_period`` per wheel."""
+        n, m = self.substeps(period), self.substeps(self.noise_period)
+        if n % m:
+            raise ValueError(f"control period {period} s is not a whole number of {self.noise_period} s noise periods")
+        return (n // m, 2)
 
     def to_dict(self) -> dict:
         """Every parameter, for the metadata of saved maps."""

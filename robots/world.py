@@ -12,8 +12,9 @@ This is the imperative shell around :mod:`robots.kinematics` for every run that 
 
 How the robot moves
 -------------------
-The motors are the kinematics' own: :func:`~robots.kinematics.motor_setpoint` (clip to c*, speed unit,
-10 % actuator noise) and :func:`~robots.kinematics.wheel_speeds` (first-order lag). Before each physics
+The motors are the kinematics' own: :func:`~robots.kinematics.quantize_command` (clip to c*, speed unit),
+:func:`~robots.kinematics.wheel_speeds` (first-order lag) and :func:`~robots.kinematics.slip` (10 %
+Webots slip noise). Before each physics
 sub-step the body's velocity is *set* from :func:`~robots.kinematics.body_twist` — velocity control —
 and ``space.step(dt)`` moves it by explicit Euler, exactly the integration of
 :func:`robots.kinematics.advance`. In free space both simulators therefore trace the same path (to
@@ -204,9 +205,10 @@ class PymunkWorld:
         ----------
         command : array ``(2,)``
             Wheel speed command; clipped to c* and rounded to the speed unit by the motors.
-        noise : array ``(2,)``, optional
-            Standard-normal actuator noise ξ (10 % of the set-point, thesis ch. 6.1). Drawn from the
-            world's actuator stream if omitted; pass ``[0, 0]`` for a noise-free step.
+        noise : array ``params.noise_shape(period)`` = ``(K, 2)``, optional
+            Slip draws ξ in [-1, 1], one per wheel and 32 ms (each wheel's speed times ``1 + 0.1 ξ``, the
+            10 % noise of thesis ch. 6.1). Drawn from the world's actuator stream if omitted; pass
+            zeros for a noise-free step.
         period : float, optional
             Control period in seconds, a whole number of sub-steps: ``params.avoid_period`` (0.128 s) by
             default, ``params.target_period`` (1.024 s) for target reaching (thesis ch. 6.1).
@@ -221,10 +223,11 @@ class PymunkWorld:
         period = self.params.avoid_period if period is None else period
         n = self.params.substeps(period)
         command = _finite(command, 2, "step: command")
-        noise = self._motor_rng.standard_normal(2) if noise is None else _finite(noise, 2, "step: noise")
-        setpoint = kinematics.motor_setpoint(command, noise, self.params)
+        shape = self.params.noise_shape(period)
+        noise = self._motor_rng.uniform(-1.0, 1.0, shape) if noise is None else _finite(noise, shape, "step: noise")
+        setpoint = kinematics.quantize_command(command, self.params)
         speeds, self.wheels = kinematics.wheel_speeds(self.wheels, setpoint, n, self.params)
-        v, omega = kinematics.body_twist(speeds, self.params)
+        v, omega = kinematics.body_twist(kinematics.slip(speeds, noise, self.params), self.params)
         trace = np.empty((n, 3))
         for j in range(n):
             self._substep(float(v[j]), float(omega[j]))
@@ -326,14 +329,15 @@ class PymunkWorld:
                 f"collisions={self.collisions})")
 
 
-def _finite(value, n: int, where: str) -> np.ndarray:
-    """``value`` as ``n`` finite floats, or a ValueError naming ``where``."""
+def _finite(value, shape, where: str) -> np.ndarray:
+    """``value`` as finite floats of ``shape`` (an int n means ``(n,)``), or a ValueError naming ``where``."""
+    shape = (shape,) if isinstance(shape, int) else tuple(shape)
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f"PymunkWorld.{where} must be {n} numbers, got {value!r}") from None
-    if a.shape != (n,):
-        raise ValueError(f"PymunkWorld.{where} must have shape ({n},), got {a.shape}")
+        raise ValueError(f"PymunkWorld.{where} must be numbers of shape {shape}, got {value!r}") from None
+    if a.shape != shape:
+        raise ValueError(f"PymunkWorld.{where} must have shape {shape}, got {a.shape}")
     if not np.all(np.isfinite(a)):
         raise ValueError(f"PymunkWorld.{where} must be finite, got {a.tolist()}")
     return a

@@ -8,7 +8,7 @@ import pytest
 from ekm.config import EKMConfig
 from robots.params import KHEPERA
 from training import reference
-from training.online import TrainConfig, start, train_step
+from training.online import TrainConfig, draw_noise, start, train_step
 
 STEPS = 60
 
@@ -24,8 +24,7 @@ def test_jax_training_steps_equal_the_numpy_reference(mapping):
     w = s.ekm.w + jax.random.normal(k1, s.ekm.w.shape) * jnp.asarray([0.3, 0.02])
     w = w.at[:, 1].set(jnp.abs(w[:, 1]))
     s = s._replace(ekm=type(s.ekm)(w, 0.1 * jax.random.normal(k2, out_shape)))
-    rng = np.random.default_rng(5)
-    draws = (rng.standard_normal((STEPS, 2)), rng.standard_normal((STEPS, 2)), rng.uniform(size=(STEPS, 2)))
+    draws = draw_noise(jax.random.PRNGKey(5), STEPS)
     step = jax.jit(lambda s, d, t: train_step(s, d, t, cfg, tcfg, KHEPERA))
 
     ref = [np.asarray(a, float) for a in (s.ekm.w, s.ekm[1], s.robot.pose, s.robot.wheels, s.target)] + [0]

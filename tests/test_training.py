@@ -8,7 +8,7 @@ from ekm.config import EKMConfig
 from evaluation.metrics import summarize
 from evaluation.protocol import evaluate
 from robots.params import KHEPERA
-from training.online import TrainConfig, start, train_chunk, train_step
+from training.online import TrainConfig, draw_noise, start, train_chunk, train_step
 from training.run import train
 
 ARENA = (1.0, 1.0)
@@ -60,8 +60,7 @@ def test_one_chunk_is_the_same_as_its_steps_one_by_one():
     chunk = train_chunk(s0, keys, 0.0, length=25, cfg=cfg, tcfg=tcfg)
     for trial in range(2):
         s = jax.tree.map(lambda a: a[trial], s0)
-        k1, k2, k3 = jax.random.split(keys[trial], 3)
-        draws = (jax.random.normal(k1, (25, 2)), jax.random.normal(k2, (25, 2)), jax.random.uniform(k3, (25, 2)))
+        draws = draw_noise(keys[trial], 25)
         step = jax.jit(lambda s, d, t: train_step(s, d, t, cfg, tcfg, KHEPERA))
         for t in range(25):
             s = step(s, tuple(d[t] for d in draws), float(t))

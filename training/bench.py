@@ -13,7 +13,7 @@ import numpy as np
 
 from ekm.config import EKMConfig
 from training import reference
-from training.online import TrainConfig, start, train_chunk
+from training.online import TrainConfig, draw_noise, start, train_chunk
 
 
 def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000, repeats: int = 3) -> dict:
@@ -37,8 +37,7 @@ def numpy_trial_steps_per_s(cfg: EKMConfig, *, steps: int = 200) -> float:
     tcfg = TrainConfig(steps=100_000, trials=1)
     s = start(jax.random.PRNGKey(0), cfg, tcfg)
     state = [np.asarray(a, float) for a in (s.ekm.w, s.ekm[1], s.robot.pose, s.robot.wheels, s.target)] + [0]
-    rng = np.random.default_rng(0)
-    draws = (rng.standard_normal((steps, 2)), rng.standard_normal((steps, 2)), rng.uniform(size=(steps, 2)))
+    draws = [np.asarray(d, float) for d in draw_noise(jax.random.PRNGKey(0), steps)]
     t0 = time.perf_counter()
     for t in range(steps):
         state = list(reference.train_step(cfg.mapping, *state, tuple(d[t] for d in draws), float(t), cfg, tcfg))

@@ -20,7 +20,7 @@ import jax.numpy as jnp
 
 from ekm import maps
 from ekm.config import EKMConfig
-from robots.kinematics import RobotState, advance, egocentric, is_stop_command, motor_setpoint, quantize_command
+from robots.kinematics import RobotState, advance, egocentric, is_stop_command, quantize_command
 from robots.params import KHEPERA, RobotParams
 from training.schedules import Schedules
 
@@ -86,15 +86,15 @@ def next_target(robot_pose, draw, tcfg: TrainConfig):
 
 
 def train_step(s: Trainee, draws, t, cfg: EKMConfig, tcfg: TrainConfig, params: RobotParams) -> Trainee:
-    """One self-organised training step (ch. 4.3, steps 1–6). ``draws`` = (actuator ξ (2,), exploration
-    ξ (2,), U[0, 1)² for the next target); ``t`` the global step for the schedules."""
+    """One self-organised training step (ch. 4.3, steps 1–6). ``draws``: one step of :func:`draw_noise`;
+    ``t`` the global step for the schedules."""
     xi_act, xi_explore, target_draw = draws
     sch = tcfg.schedules
     n = params.substeps(params.target_period)
     u = egocentric(s.robot.pose, s.target, jnp)  # 1. sensory input u_p
     c_p, _ = maps.control(s.ekm, u, cfg)  # 2. motor control (Eq. 4.5, or c_k)
     c_sent = quantize_command(c_p + sch.explore(t, tcfg.steps) * cfg.c_max * xi_explore, params, jnp)
-    robot, _ = advance(s.robot, motor_setpoint(c_sent, xi_act, params, jnp), n, params, jnp)
+    robot, _ = advance(s.robot, c_sent, xi_act, n, params, jnp)
     v = egocentric(s.robot.pose, robot.pose[:2], jnp)  # 3. actual displacement, seen from the start pose
     ekm = maps.update(s.ekm, v, c_sent, sch.eta(t, tcfg.steps), sch.sigma(t, tcfg.steps), cfg)  # 4.–6.
     done = s.age + 1 >= tcfg.patience
@@ -102,6 +102,15 @@ def train_step(s: Trainee, draws, t, cfg: EKMConfig, tcfg: TrainConfig, params: 
         done = done | (egocentric(robot.pose, s.target, jnp)[1] < tcfg.reach) | is_stop_command(c_sent, params, jnp)
     target = jnp.where(done, next_target(robot.pose, target_draw, tcfg), s.target)
     return Trainee(ekm, robot, target, jnp.where(done, 0, s.age + 1))
+
+
+def draw_noise(key, length: int, params: RobotParams = KHEPERA):
+    """All randomness of ``length`` training steps, drawn up front: slip ξ ``(length, K, 2)`` in [-1, 1]
+    (:func:`robots.kinematics.slip`), exploration ξ ``(length, 2)`` standard normal, and U[0, 1)²
+    ``(length, 2)`` for the next target."""
+    k1, k2, k3 = jax.random.split(key, 3)
+    return (jax.random.uniform(k1, (length,) + params.noise_shape(params.target_period), minval=-1.0, maxval=1.0),
+            jax.random.normal(k2, (length, 2)), jax.random.uniform(k3, (length, 2)))
 
 
 @partial(jax.jit, static_argnames=("length", "cfg", "tcfg", "params"))
@@ -113,9 +122,7 @@ def train_chunk(trainees: Trainee, keys, t0, *, length: int, cfg: EKMConfig, tcf
     """
 
     def one_trial(s, key):
-        k1, k2, k3 = jax.random.split(key, 3)
-        draws = (jax.random.normal(k1, (length, 2)), jax.random.normal(k2, (length, 2)),
-                 jax.random.uniform(k3, (length, 2)))
+        draws = draw_noise(key, length, params)
 
         def body(s, x):
             draw, t = x

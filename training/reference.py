@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ekm.config import EKMConfig
-from robots.kinematics import RobotState, advance, egocentric, is_stop_command, motor_setpoint, quantize_command
+from robots.kinematics import RobotState, advance, egocentric, is_stop_command, quantize_command
 from robots.params import KHEPERA, RobotParams
 
 
@@ -78,7 +78,7 @@ def train_step(mapping: str, w, out, pose, wheels, target, age: int, draws, t: f
     u = egocentric(robot.pose, target)
     c_p = control(mapping, w, out, u, cfg)
     c_sent = quantize_command(c_p + float(sch.explore(t, tcfg.steps)) * cfg.c_max * xi_explore, params)
-    moved, _ = advance(robot, motor_setpoint(c_sent, xi_act, params), params.substeps(params.target_period), params)
+    moved, _ = advance(robot, c_sent, xi_act, params.substeps(params.target_period), params)
     v = egocentric(robot.pose, moved.pose[:2])
     w, out = update(mapping, w, out, v, c_sent, float(sch.eta(t, tcfg.steps)), float(sch.sigma(t, tcfg.steps)), cfg)
     done = age + 1 >= tcfg.patience
