@@ -3,7 +3,9 @@
 5 trials × 100,000 steps, 15×15 neurons, the test of 50 random targets every 10,000 steps (the same
 targets for every trial and checkpoint), 10 % actuator noise — exactly what ``ekm train`` runs. Prints
 markdown: E at every checkpoint, the final E, P/T/D at 5/10/25 mm and capped targets, the per-trial
-range, and how far the trained neurons reach (Fig. 6.2: indirect to d ≈ 0.16 m, direct to ≈ 0.11 m).
+range, how far the trained neurons reach (Fig. 6.2: indirect to d ≈ 0.16 m, direct to ≈ 0.11 m) ahead
+of the robot and behind it, and T(25), D(25) split by where each target appeared: ahead (|α| < π/2, the
+robot drives forwards) or behind (it reverses).
 
 Run from the repository root (about a minute)::
 
@@ -38,6 +40,16 @@ def protocol(mapping: str, seed: int):
     return curve, last["rec"], np.asarray(maps.w), time.perf_counter() - t0
 
 
+def split_table(rec) -> None:
+    """T(25) and D(25) of the targets that appeared ahead of the robot and of those behind it."""
+    ahead = np.abs(np.asarray(rec.bearing)) < np.pi / 2
+    print("| target appeared | targets | P(25) | T(25) steps/m | D(25) |")
+    print("|---|---:|---:|---:|---:|")
+    for name, m in (("ahead (|α| < π/2)", ahead), ("behind", ~ahead)):
+        sub = summarize(jax.tree.map(lambda a, m=m: np.asarray(a)[m][None], rec))
+        print(f"| {name} | {int(m.sum())} | {sub['P']['25']:.3f} | {sub['T']['25']:.2f} | {sub['D']['25']:.3f} |")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=0)
@@ -57,9 +69,12 @@ def main() -> None:
             ds = [p["D"][e] for p in per if p["D"][e] is not None]
             print(f"| {e} | {s['P'][e]:.3f} | {s['T'][e]:.2f} | {min(ts):.2f}–{max(ts):.2f} | {s['D'][e]:.3f} | "
                   f"{min(ds):.3f}–{max(ds):.3f} |")
-        d = w[..., 1]
+        d, fwd = w[..., 1], np.abs(w[..., 0]) < np.pi / 2
+        reach = [np.mean([d[i][m[i]].max() for i in range(len(d))]) for m in (fwd, ~fwd)]
         print(f"\nneurons reach d = {np.mean(d.max(axis=1)):.3f} m (max), {np.mean(np.percentile(d, 95, axis=1)):.3f} m "
-              f"(95th percentile); {np.mean(np.abs(w[..., 0]) < np.pi / 2):.0%} encode |α| < π/2", flush=True)
+              f"(95th percentile); {np.mean(fwd):.0%} encode |α| < π/2 and reach {reach[0]:.3f} m, the others "
+              f"{reach[1]:.3f} m\n")
+        split_table(rec)
 
 
 if __name__ == "__main__":
