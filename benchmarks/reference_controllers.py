@@ -12,10 +12,19 @@ step; each controller is a rule for choosing that arc:
 
 Run from the repository root (about a minute)::
 
-    python benchmarks/reference_controllers.py
+    python benchmarks/reference_controllers.py                # Webots slip noise (the package's model)
+    python benchmarks/reference_controllers.py --per-command  # one noise draw per 1.024 s command
+
+``--per-command`` draws each wheel's noise once per command, with the same 10 % standard deviation
+(uniform half-width 0.1·√3): the model this package used before it followed Webots. A full-speed
+step then turns the heading by 0.44 rad (std) at random, and no controller reaches T(25) ≤ 9.
 """
 
 from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
 
 import jax
 import jax.numpy as jnp
@@ -23,7 +32,7 @@ import jax.numpy as jnp
 from evaluation.metrics import summarize
 from evaluation.protocol import drive_test, test_targets
 from robots.kinematics import wrap_angle
-from robots.params import KHEPERA as P
+from robots.params import KHEPERA as P, RobotParams
 
 T, B, CMAX = P.target_period, P.wheel_base, P.max_wheel_speed
 
@@ -55,23 +64,29 @@ def turn_then_arc(threshold):
     return control
 
 
-def score(control, trials: int = 5, arena=(1.0, 1.0)) -> dict:
+def score(control, trials: int = 5, arena=(1.0, 1.0), params: RobotParams = P) -> dict:
     """The ch. 6.1 test (50 targets, seed 0, as ``ekm evaluate``) for ``trials`` noise draws."""
     pts = test_targets(50, arena, seed=0)
     centre = jnp.asarray([0.5 * arena[0], 0.5 * arena[1], 0.0])
     keys = jax.random.split(jax.random.fold_in(jax.random.PRNGKey(0), 1), trials)
-    rec = jax.jit(jax.vmap(lambda k: drive_test(control, pts, centre, k)))(keys)
+    rec = jax.jit(jax.vmap(lambda k: drive_test(control, pts, centre, k, params=params)))(keys)
     return summarize(rec)
 
 
 def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--per-command", action="store_true", help="one noise draw per command (std 10 %%)")
+    args = ap.parse_args()
+    params = P
+    if args.per_command:
+        params = dataclasses.replace(P, noise_period=P.target_period, actuator_noise=0.1 * math.sqrt(3.0))
     rows = [("arc (exact one-step inverse)", arc)]
     rows += [(f"turn in place when the target is more than {t} rad off, else arc", turn_then_arc(t))
              for t in (1.2, 0.9, 0.6, 0.3)]
     print("| reference controller | E (mm) | P(25) | T(25) steps/m | D(25) | capped |")
     print("|---|---:|---:|---:|---:|---:|")
     for name, control in rows:
-        s = score(control)
+        s = score(control, params=params)
         print(f"| {name} | {s['E_mm']:.2f} | {s['P']['25']:.2f} | {s['T']['25']:.2f} | {s['D']['25']:.3f} | "
               f"{s['capped']} |", flush=True)
 
