@@ -36,9 +36,11 @@ def forward_prior(cfg: EKMConfig):
     the initial outputs of a direct map). It only breaks the forward/backward symmetry of the task —
     a forward and a backward arc reach the same displacement, and a map with no preferred direction of
     travel (M_i = 0) settles on either, trial by trial, and learns worse (``forward_init`` = 0: final
-    E = 21, 10, 7.5 mm and D(25) 0.34–0.48 for seeds 0–2, against 2.5, 2.1, 2.1 mm and 0.14–0.15) — and
-    gives the untrained robot no way to reach a target: it cannot turn (untrained E ≈ 26 m in the ch. 6.1
-    test). A prior that also steered (the linearised one-step inverse) was rejected: untrained, it
+    E = 3.0, 3.9, 4.8 mm and D(25) 0.16–0.21 for seeds 0–2, against 2.1, 1.7, 1.7 mm and 0.12–0.13) — and
+    gives the untrained robot no way to reach a target: it cannot turn and drives off (untrained E ≈ 100 m
+    in the ch. 6.1 test). A prior that reverses for the neurons behind the robot (sign(cos α_i) M_fwd)
+    learned worse still (E = 45 mm, seed 0, measured with the neighbourhood ending at σ = 1). A prior
+    that also steered (the linearised one-step inverse) was rejected: untrained, it
     already stopped within 2.7 mm of the targets, so it would be a hand-made controller, not a start.
     """
     return jnp.asarray([[0.0, cfg.c_max], [0.0, cfg.c_max]], dtype=jnp.float32)
