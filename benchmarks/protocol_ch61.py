@@ -9,7 +9,7 @@ robot drives forwards) or behind (it reverses).
 
 Run from the repository root (about a minute)::
 
-    python benchmarks/protocol_ch61.py [--seed S]
+    python benchmarks/protocol_ch61.py [--seed S] [--priority K]
 """
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ from training.online import TrainConfig
 from training.run import train
 
 
-def protocol(mapping: str, seed: int):
-    cfg, tcfg = EKMConfig(mapping=mapping), TrainConfig()
+def protocol(mapping: str, seed: int, priority: int | None = None):
+    cfg, tcfg = EKMConfig(mapping=mapping, priority=priority), TrainConfig()
     curve, last = [], {}
 
     def on_eval(step, maps):
@@ -53,9 +53,10 @@ def split_table(rec) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--priority", type=int, default=None, help="|A(α)| of Eq. 4.4 (default: N)")
     args = ap.parse_args()
     for mapping in ("indirect", "direct"):
-        curve, rec, w, seconds = protocol(mapping, args.seed)
+        curve, rec, w, seconds = protocol(mapping, args.seed, args.priority)
         s = summarize(rec)
         per = [summarize(jax.tree.map(lambda a, i=i: a[i], rec)) for i in range(s["trials"])]
         print(f"\n### {mapping} (seed {args.seed}, {seconds:.0f} s)\n")

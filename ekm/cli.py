@@ -239,7 +239,7 @@ def cmd_train(args) -> None:
     if world.walls or world.obstacles or world.unforeseen or world.moving:
         raise InputError(f"--world {args.world}: training needs an obstacle-free world (thesis ch. 4.3)")
     try:
-        cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons)
+        cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons, priority=args.priority)
         tcfg = TrainConfig(steps=args.steps, trials=args.trials, arena=tuple(world.size))
     except ValueError as exc:
         raise InputError(f"ekm train: {exc}") from None
@@ -352,6 +352,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("train", help="train EKMs online (thesis ch. 4.3) and test them as in ch. 6.1")
     p.add_argument("--mapping", choices=("direct", "indirect"), required=True, help="direct (ch. 4.1) or indirect (ch. 4.2)")
     p.add_argument("--neurons", type=positive_int, default=15, metavar="N", help="N x N lattice (default 15)")
+    p.add_argument("--priority", type=positive_int, default=None, metavar="K",
+                   help="|A(alpha)| of Eq. 4.4: the K neurons of most similar angle compete (default N)")
     p.add_argument("--steps", type=positive_int, default=100_000, help="training steps of 1.024 s (default 100000)")
     p.add_argument("--trials", type=positive_int, default=5, help="independent trials (default 5)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="training seed (default 0)")
