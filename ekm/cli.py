@@ -286,6 +286,7 @@ def cmd_evaluate(args) -> None:
     from ekm.mapfile import load_maps
 
     plot = _output_path(args.plot, "--plot", ".png") if args.plot else None
+    paths = _output_path(args.paths, "--paths", ".png") if args.paths else None
     loaded = [load_maps(path) for path in args.maps]
     results = []
     for path, saved in zip(args.maps, loaded):
@@ -297,6 +298,8 @@ def cmd_evaluate(args) -> None:
         save_figure_6_1_6_2([{"label": f"{r['mapping']} ({Path(r['file']).name})", "curve": list(saved.curve),
                               "summary": r, "w": np.asarray(saved.ekm.w[0])} for r, saved in zip(results, loaded)],
                             plot)
+    if paths:
+        _save_paths(args.maps, loaded, args.targets, args.seed, paths)
     if args.json:
         keys = ("E_mm", "P", "T", "D", "trials", "targets", "capped")
         print_json({k: results[0][k] for k in keys} if len(results) == 1
@@ -304,8 +307,25 @@ def cmd_evaluate(args) -> None:
         return
     for r in results:
         _print_summary(r, f"{r['file']} ({r['mapping']})")
-    if plot:
-        print(f"plot written to {plot}")
+    for out in (plot, paths):
+        if out:
+            print(f"plot written to {out}")
+
+
+def _save_paths(files, loaded, targets: int, seed: int, out) -> None:
+    """``ekm evaluate --paths``: the first trial's paths in the same test, one panel per map."""
+    from pathlib import Path
+
+    from evaluation.metrics import summarize
+    from evaluation.plots import save_paths_figure
+    from evaluation.protocol import trace_paths
+
+    panels = []
+    for path, saved in zip(files, loaded):
+        pts, start, xy, rec = trace_paths(saved.ekm, saved.cfg, saved.arena, targets=targets, seed=seed)
+        panels.append({"label": f"{saved.cfg.mapping} ({Path(path).name}, trial 1)", "targets": pts, "start": start,
+                       "xy": xy, "summary": summarize(rec)})
+    save_paths_figure(panels, loaded[0].arena, out)
 
 
 def cmd_bench(args) -> None:
@@ -372,6 +392,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--targets", type=positive_int, default=50, help="test targets (default 50)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="seed of the test targets and noise (default 0)")
     p.add_argument("--plot", metavar="PNG", help="draw Fig. 6.1/6.2 with all maps on the same axes")
+    p.add_argument("--paths", metavar="PNG", help="draw each map's paths through the first 10 test targets")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=cmd_evaluate)
 

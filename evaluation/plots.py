@@ -1,5 +1,6 @@
 """Figures of thesis ch. 6.1: Fig. 6.1 (E during training; P, T, D after training, maps on the same
-axes) and Fig. 6.2 (input weights w_i = (α_i, d_i) of the trained neurons)."""
+axes), Fig. 6.2 (input weights w_i = (α_i, d_i) of the trained neurons), and the test paths themselves
+(what T and D measure)."""
 
 from __future__ import annotations
 
@@ -58,3 +59,41 @@ def figure_6_1_6_2(results: list[dict]) -> Figure:
 def save_figure_6_1_6_2(results: list[dict], path) -> None:
     """Draw :func:`figure_6_1_6_2` and write it atomically to ``path``."""
     save_figure(figure_6_1_6_2(results), path, dpi=110)
+
+
+def paths_figure(results: list[dict], arena, *, shown: int = 10) -> Figure:
+    """The robot's paths through the first ``shown`` targets of the ch. 6.1 test, one panel per map.
+
+    ``results``: one dict per map with ``label``, ``targets`` ``(N, 2)``, ``start`` ``(3,)``, ``xy``
+    ``(N, m, 2)`` (the centre after every sub-step on each target, :func:`evaluation.protocol.trace_paths`)
+    and ``summary`` (for the panel title). Paths are coloured by target; numbers mark the targets.
+    """
+    from matplotlib import colormaps
+    from matplotlib.patches import Rectangle
+
+    fig = Figure(figsize=(5.2 * len(results), 5.4), layout="constrained")
+    cmap = colormaps["viridis"]
+    for j, r in enumerate(results):
+        ax = fig.add_subplot(1, len(results), j + 1)
+        ax.add_patch(Rectangle((0, 0), arena[0], arena[1], fill=False, color="0.3", lw=1))
+        targets, xy = np.asarray(r["targets"]), np.asarray(r["xy"])
+        k = min(shown, len(targets))
+        start = np.asarray(r["start"])[:2]
+        for i in range(k):
+            colour = cmap(i / max(1, k - 1))
+            frm = start if i == 0 else targets[i - 1]
+            ax.plot(*np.stack([frm, targets[i]]).T, ":", color="0.6", lw=0.8)
+            ax.plot(*np.vstack([frm if i == 0 else xy[i - 1, -1], xy[i]]).T, "-", color=colour, lw=1.4)
+            ax.plot(*targets[i], "x", color=colour, ms=7, mew=2)
+            ax.annotate(str(i + 1), targets[i], textcoords="offset points", xytext=(4, 4), fontsize=8)
+        ax.plot(*start, "o", color="k", ms=5)
+        s = r["summary"]
+        ax.set(title=f"{r['label']}: first {k} targets\nT(25) {s['T']['25']:.1f} steps/m, D(25) {s['D']['25']:.3f}",
+               xlabel="x (m)", ylabel="y (m)", xlim=(0, arena[0]), ylim=(0, arena[1]), aspect="equal")
+        ax.grid(alpha=0.3)
+    return fig
+
+
+def save_paths_figure(results: list[dict], arena, path, *, shown: int = 10) -> None:
+    """Draw :func:`paths_figure` and write it atomically to ``path``."""
+    save_figure(paths_figure(results, arena, shown=shown), path, dpi=110)

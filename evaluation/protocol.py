@@ -35,8 +35,11 @@ class TargetRecord(NamedTuple):
     bearing: jax.Array  # rad: α of u_p when the target is presented (where the robot has to turn)
 
 
-def _drive_to(control, robot: RobotState, target, previous, noise, params: RobotParams, eps):
-    """Drive to one ``target`` for at most ``len(noise)`` steps. ``previous``: where l_i is measured from."""
+def _drive_to(control, robot: RobotState, target, previous, noise, params: RobotParams, eps, keep_path: bool = False):
+    """Drive to one ``target`` for at most ``len(noise)`` steps. ``previous``: where l_i is measured from.
+
+    Returns ``(robot, record, xy)``: ``xy`` ``(steps, n, 2)`` is the centre after every sub-step if
+    ``keep_path``, else None."""
     n = params.substeps(params.target_period)
     n_eps = eps.shape[0]
 
@@ -59,23 +62,26 @@ def _drive_to(control, robot: RobotState, target, previous, noise, params: Robot
         path = jnp.where(new_hit, cum[first], path)
         travelled = cum[-1]
         k = jnp.where(stop_now, k, k + 1)
-        return (robot, stop_now, hit | new_hit, time, path, travelled, k), None
+        return (robot, stop_now, hit | new_hit, time, path, travelled, k), trace[:, :2] if keep_path else None
 
     straight = jnp.linalg.norm(target - previous)
     alpha0, d0 = egocentric(robot.pose, target, jnp)
     hit0 = d0 < eps  # already there
     init = (robot, jnp.asarray(False), hit0, jnp.zeros(n_eps), jnp.zeros(n_eps), jnp.asarray(0.0), jnp.asarray(0))
-    (robot, stopped, hit, time, path, _, k), _ = jax.lax.scan(body, init, noise)
+    (robot, stopped, hit, time, path, _, k), xy = jax.lax.scan(body, init, noise)
     error = jnp.linalg.norm(robot.pose[:2] - target)
-    return robot, TargetRecord(error, ~stopped, straight, hit, time, path, k, alpha0)
+    return robot, (TargetRecord(error, ~stopped, straight, hit, time, path, k, alpha0), xy)
 
 
-def drive_test(control, targets, start_pose, key, *, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
+def drive_test(control, targets, start_pose, key, *, cap: int = 50, params: RobotParams = KHEPERA,
+               keep_path: bool = False):
     """The ch. 6.1 test of any controller: visit ``targets`` ``(N, 2)`` in order from ``start_pose``.
 
     ``control(u_p) -> c`` maps the target input (α, d) to wheel commands; it must be a pure JAX function
     (the whole test is one nested ``lax.scan``). Returns one :class:`TargetRecord` per target (leading
     axis N). Used for the maps (:func:`run_test`) and for analytic reference controllers (benchmarks).
+    With ``keep_path`` it returns ``(records, xy)``, ``xy`` ``(N, cap, n, 2)`` the robot's centre after
+    every sub-step (it stands still once it has stopped).
     """
     noise = jax.random.uniform(key, (targets.shape[0], cap) + params.noise_shape(params.target_period),
                                minval=-1.0, maxval=1.0)
@@ -85,15 +91,18 @@ def drive_test(control, targets, start_pose, key, *, cap: int = 50, params: Robo
 
     def body(robot, x):
         target, prev, xi = x
-        return _drive_to(control, robot, target, prev, xi, params, eps)
+        return _drive_to(control, robot, target, prev, xi, params, eps, keep_path)
 
-    return jax.lax.scan(body, robot, (targets, previous, noise))[1]
+    records, xy = jax.lax.scan(body, robot, (targets, previous, noise))[1]
+    return (records, xy) if keep_path else records
 
 
-@partial(jax.jit, static_argnames=("cfg", "cap", "params"))
-def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, params: RobotParams = KHEPERA) -> TargetRecord:
+@partial(jax.jit, static_argnames=("cfg", "cap", "params", "keep_path"))
+def run_test(ekm, targets, start_pose, key, *, cfg: EKMConfig, cap: int = 50, params: RobotParams = KHEPERA,
+             keep_path: bool = False):
     """The ch. 6.1 test of one map (:func:`drive_test` with c_p from Eq. 4.5 or c_k). ``vmap`` it over trials."""
-    return drive_test(lambda u: maps.control(ekm, u, cfg)[0], targets, start_pose, key, cap=cap, params=params)
+    return drive_test(lambda u: maps.control(ekm, u, cfg)[0], targets, start_pose, key, cap=cap, params=params,
+                      keep_path=keep_path)
 
 
 def test_targets(n: int, arena, *, seed: int = 0, margin: float = 0.1):
@@ -103,15 +112,33 @@ def test_targets(n: int, arena, *, seed: int = 0, margin: float = 0.1):
     return jax.random.uniform(jax.random.PRNGKey(seed), (n, 2), jnp.float32, lo, hi)
 
 
+def _test_setup(arena, targets: int, seed: int, trials: int):
+    """The test's target sequence, start pose (arena centre, heading along x) and per-trial noise keys."""
+    pts = test_targets(targets, arena, seed=seed)
+    centre = jnp.asarray([0.5 * arena[0], 0.5 * arena[1], 0.0], jnp.float32)
+    keys = jax.random.split(jax.random.fold_in(jax.random.PRNGKey(seed), 1), trials)
+    return pts, centre, keys
+
+
 def evaluate(ekm_stack, cfg: EKMConfig, arena, *, targets: int = 50, seed: int = 0, cap: int = 50,
              params: RobotParams = KHEPERA) -> TargetRecord:
     """Run the ch. 6.1 test for every map of ``ekm_stack`` (leading trial axis) on the same target
     sequence (from ``seed``), each trial with its own actuator noise. Returns records ``(trials, targets)``."""
-    pts = test_targets(targets, arena, seed=seed)
-    centre = jnp.asarray([0.5 * arena[0], 0.5 * arena[1], 0.0], jnp.float32)
-    trials = ekm_stack.w.shape[0]
-    keys = jax.random.split(jax.random.fold_in(jax.random.PRNGKey(seed), 1), trials)
+    pts, centre, keys = _test_setup(arena, targets, seed, ekm_stack.w.shape[0])
     return _evaluate_stack(ekm_stack, pts, centre, keys, cfg=cfg, cap=cap, params=params)
+
+
+def trace_paths(ekm_stack, cfg: EKMConfig, arena, *, targets: int = 50, seed: int = 0, cap: int = 50,
+               params: RobotParams = KHEPERA):
+    """The paths of the first trial's map in :func:`evaluate`'s test (same targets, same noise).
+
+    Returns ``(targets_xy (N, 2), start (3,), xy (N, cap · n, 2), records)``: the robot's centre after every
+    sub-step while it was on each target, and that trial's :class:`TargetRecord`.
+    """
+    pts, centre, keys = _test_setup(arena, targets, seed, ekm_stack.w.shape[0])
+    first = jax.tree.map(lambda a: a[0], ekm_stack)
+    records, xy = run_test(first, pts, centre, keys[0], cfg=cfg, cap=cap, params=params, keep_path=True)
+    return pts, centre, xy.reshape(xy.shape[0], -1, 2), records
 
 
 @partial(jax.jit, static_argnames=("cfg", "cap", "params"))

@@ -54,11 +54,12 @@ def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     assert code == 0
     assert load_maps(tmp_path / "dir.npz").cfg.priority == 16  # --priority reaches the map and its file
     code, stdout, _ = run_cli(capsys, "evaluate", out, tmp_path / "dir.npz", "--targets", "5", "--json",
-                              "--plot", tmp_path / "both.png")
+                              "--plot", tmp_path / "both.png", "--paths", tmp_path / "paths.png")
     assert code == 0
     maps = json.loads(stdout)["maps"]
     assert [m["mapping"] for m in maps] == ["indirect", "direct"]
     assert (tmp_path / "both.png").stat().st_size > 10_000
+    assert (tmp_path / "paths.png").stat().st_size > 10_000
     code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "5")
     assert code == 0 and "E =" in stdout and "P(eps)" in stdout
 
@@ -76,6 +77,7 @@ def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     (["train", "--mapping", "direct", "--out", "x.npz", "--world", "nowhere"], "no such world"),
     (["evaluate", "missing.npz"], "no such map file"),
     (["evaluate"], "required"),
+    (["evaluate", "missing.npz", "--paths", "paths.jpg"], "ending in .png"),
 ])
 def test_bad_arguments_give_one_line_and_status_2(capsys, tmp_path, monkeypatch, argv, message):
     monkeypatch.chdir(tmp_path)

@@ -6,7 +6,7 @@ import pytest
 
 from ekm.config import EKMConfig
 from evaluation.metrics import summarize
-from evaluation.protocol import evaluate
+from evaluation.protocol import evaluate, trace_paths
 from robots.params import KHEPERA
 from training.online import TrainConfig, draw_noise, start, train_chunk, train_step
 from training.run import train
@@ -39,6 +39,20 @@ def test_indirect_mapping_beats_direct_mapping_on_a_short_run(short_runs):
     d, i = short_runs["direct"][20_000], short_runs["indirect"][20_000]
     assert i["E_mm"] < d["E_mm"]
     assert i["P"]["5"] > d["P"]["5"]
+
+
+def test_traced_paths_are_the_first_trial_of_the_same_test():
+    cfg, tcfg = EKMConfig(neurons=6), TrainConfig(steps=2000, trials=2, arena=ARENA)
+    maps = train(cfg, tcfg, seed=1)
+    rec = jax.tree.map(lambda a: np.asarray(a)[0], evaluate(maps, cfg, ARENA, targets=8))
+    pts, start, xy, first = trace_paths(maps, cfg, ARENA, targets=8)
+    for a, b in zip(first, rec):
+        np.testing.assert_allclose(np.asarray(a, float), np.asarray(b, float), atol=1e-5)
+    n = KHEPERA.substeps(KHEPERA.target_period)
+    assert xy.shape == (8, 50 * n, 2)
+    # Each path ends where the robot stood when E was measured, and starts next to the arena centre.
+    np.testing.assert_allclose(np.linalg.norm(np.asarray(xy)[:, -1] - np.asarray(pts), axis=-1), rec.error, atol=1e-5)
+    assert np.linalg.norm(np.asarray(xy)[0, 0] - np.asarray(start)[:2]) <= 1.1 * KHEPERA.max_wheel_speed * KHEPERA.dt
 
 
 def test_training_is_reproducible_from_its_seed():
