@@ -29,18 +29,32 @@ def _whole_number(text: str) -> int:
         raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
 
 
-def positive_int(text: str) -> int:
-    value = _whole_number(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {value}")
+def finite_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text}")
     return value
 
 
-def nonneg_int(text: str) -> int:
-    value = _whole_number(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
-    return value
+def _signed(parse, *, strict: bool):
+    """An argparse type: ``parse`` the text, then require > 0 (``strict``) or >= 0."""
+
+    def check(text: str):
+        value = parse(text)
+        if value < 0 or (strict and value == 0):
+            raise argparse.ArgumentTypeError(f"must be {'>' if strict else '>='} 0, got {text}")
+        return value
+
+    return check
+
+
+positive_int = _signed(_whole_number, strict=True)
+nonneg_int = _signed(_whole_number, strict=False)
+positive_float = _signed(finite_float, strict=True)
+nonneg_float = _signed(finite_float, strict=False)
 
 
 def print_json(obj) -> None:
@@ -55,30 +69,6 @@ def show_progress(args) -> bool:
 
 
 # ------------------------------------------------------------------------------------------- commands
-
-def finite_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"must be finite, got {text}")
-    return value
-
-
-def positive_float(text: str) -> float:
-    value = finite_float(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
-    return value
-
-
-def nonneg_float(text: str) -> float:
-    value = finite_float(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
-    return value
-
 
 def xy_point(text: str) -> tuple[float, float]:
     """``"X,Y"`` in metres → ``(x, y)``."""
