@@ -38,8 +38,8 @@ class TargetRecord(NamedTuple):
 def _drive_to(control, robot: RobotState, target, previous, noise, params: RobotParams, eps, keep_path: bool = False):
     """Drive to one ``target`` for at most ``len(noise)`` steps. ``previous``: where l_i is measured from.
 
-    Returns ``(robot, record, xy)``: ``xy`` ``(steps, n, 2)`` is the centre after every sub-step if
-    ``keep_path``, else None."""
+    Returns ``(robot, (record, xy))`` — the scan carry and output of :func:`drive_test` — where ``xy``
+    ``(steps, n, 2)`` is the centre after every sub-step if ``keep_path``, else None."""
     n = params.substeps(params.target_period)
     n_eps = eps.shape[0]
 
