@@ -85,6 +85,15 @@ def body_twist(speeds, params: RobotParams = KHEPERA):
     return 0.5 * (speeds[..., 0] + speeds[..., 1]), (speeds[..., 1] - speeds[..., 0]) / params.wheel_base
 
 
+def motor_twist(wheels, setpoint, noise, n: int, params: RobotParams = KHEPERA, xp=np):
+    """The motors through one control period: forward speed ``v`` and turn rate ``ω`` ``(..., n)`` held in
+    each sub-step (lag of :func:`wheel_speeds`, then :func:`slip`), and the wheel speeds at its end.
+    Both simulators move the body with these (:func:`advance` here, ``PymunkWorld.step`` in pymunk)."""
+    speeds, wheels = wheel_speeds(wheels, setpoint, n, params, xp)
+    v, omega = body_twist(slip(speeds, noise, params, xp), params)
+    return v, omega, wheels
+
+
 def advance(state: RobotState, setpoint, noise, n: int, params: RobotParams = KHEPERA, xp=np):
     """Move the robot through ``n`` sub-steps towards wheel ``setpoint`` ``(..., 2)`` (a sent command, see
     :func:`quantize_command`) with slip ``noise`` ``(..., K, 2)`` in [-1, 1] (:func:`slip`).
@@ -94,8 +103,7 @@ def advance(state: RobotState, setpoint, noise, n: int, params: RobotParams = KH
     first-passage times are read from it.
     """
     dt = params.dt
-    speeds, wheels = wheel_speeds(state.wheels, setpoint, n, params, xp)
-    v, omega = body_twist(slip(speeds, noise, params, xp), params)  # (..., n) each
+    v, omega, wheels = motor_twist(state.wheels, setpoint, noise, n, params, xp)  # (..., n) each
     theta0 = state.pose[..., 2:3]
     heading_inc = xp.cumsum(omega * dt, axis=-1)  # θ_{j+1} - θ_0
     theta_before = theta0 + heading_inc - omega * dt  # θ_j, heading during sub-step j

@@ -13,9 +13,8 @@ This is the imperative shell around :mod:`robots.kinematics` for every run that 
 How the robot moves
 -------------------
 The motors are the kinematics' own: :func:`~robots.kinematics.quantize_command` (clip to c*, speed unit),
-:func:`~robots.kinematics.wheel_speeds` (first-order lag) and :func:`~robots.kinematics.slip` (10 %
-Webots slip noise). Before each physics
-sub-step the body's velocity is *set* from :func:`~robots.kinematics.body_twist` — velocity control —
+:func:`~robots.kinematics.motor_twist` (first-order lag, then 10 % Webots slip noise). Before each physics
+sub-step the body's velocity is *set* from that speed and turn rate — velocity control —
 and ``space.step(dt)`` moves it by explicit Euler, exactly the integration of
 :func:`robots.kinematics.advance`. In free space both simulators therefore trace the same path (to
 floating-point rounding).
@@ -226,8 +225,7 @@ class PymunkWorld:
         shape = self.params.noise_shape(period)
         noise = self._motor_rng.uniform(-1.0, 1.0, shape) if noise is None else _finite(noise, shape, "step: noise")
         setpoint = kinematics.quantize_command(command, self.params)
-        speeds, self.wheels = kinematics.wheel_speeds(self.wheels, setpoint, n, self.params)
-        v, omega = kinematics.body_twist(kinematics.slip(speeds, noise, self.params), self.params)
+        v, omega, self.wheels = kinematics.motor_twist(self.wheels, setpoint, noise, n, self.params)
         trace = np.empty((n, 3))
         for j in range(n):
             self._substep(float(v[j]), float(omega[j]))
