@@ -9,7 +9,7 @@ robot drives forwards) or behind (it reverses).
 
 Run from the repository root (about a minute)::
 
-    python benchmarks/protocol_ch61.py [--seed S] [--priority K]
+    python benchmarks/protocol_ch61.py [--seed S] [--priority K] [--chart {signed,polar}]
 """
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ from training.online import TrainConfig
 from training.run import train
 
 
-def protocol(mapping: str, seed: int, priority: int | None = None):
-    cfg, tcfg = EKMConfig(mapping=mapping, priority=priority), TrainConfig()
+def protocol(mapping: str, seed: int, priority: int | None = None, chart: str = "signed"):
+    cfg, tcfg = EKMConfig(mapping=mapping, priority=priority, chart=chart), TrainConfig()
     curve, last = [], {}
 
     def on_eval(step, maps):
@@ -54,12 +54,14 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--priority", type=int, default=None, help="|A(α)| of Eq. 4.4 (default: N)")
+    ap.add_argument("--chart", choices=("signed", "polar"), default="signed",
+                    help="coordinates of the indirect map's linear model (ekm.charts; default signed)")
     args = ap.parse_args()
     for mapping in ("indirect", "direct"):
-        curve, rec, w, seconds = protocol(mapping, args.seed, args.priority)
+        curve, rec, w, seconds = protocol(mapping, args.seed, args.priority, args.chart)
         s = summarize(rec)
         per = [summarize(jax.tree.map(lambda a, i=i: a[i], rec)) for i in range(s["trials"])]
-        print(f"\n### {mapping} (seed {args.seed}, {seconds:.0f} s)\n")
+        print(f"\n### {mapping} (seed {args.seed}, chart {args.chart}, {seconds:.0f} s)\n")
         print("E (mm) at 0, 10k, …, 100k steps: " + ", ".join(f"{e:.1f}" for e in curve))
         print(f"\nE = {s['E_mm']:.2f} mm (trials {min(p['E_mm'] for p in per):.2f}–{max(p['E_mm'] for p in per):.2f}), "
               f"capped {s['capped']} of {s['trials'] * s['targets']}\n")

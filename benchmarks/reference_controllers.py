@@ -29,12 +29,15 @@ import math
 import jax
 import jax.numpy as jnp
 
+from ekm.charts import signed
+from ekm.config import EKMConfig
+from ekm.kohonen import units
 from evaluation.metrics import summarize
 from evaluation.protocol import drive_test, test_targets
-from robots.kinematics import wrap_angle
 from robots.params import KHEPERA as P, RobotParams
 
 T, B, CMAX = P.target_period, P.wheel_base, P.max_wheel_speed
+CFG = EKMConfig()
 
 
 def _limit(c):
@@ -43,12 +46,11 @@ def _limit(c):
 
 
 def arc(u):
-    """Wheel commands of the one-step arc to u = (α, d); backwards for targets behind."""
-    a, d = u[0], u[1]
-    back = jnp.abs(a) > jnp.pi / 2
-    a2 = jnp.where(back, wrap_angle(a - jnp.pi, jnp), a)
+    """Wheel commands of the one-step arc to u = (α, d); backwards for targets behind (the signed chart
+    of ``ekm.charts``: one formula on (α', d'), d' < 0 behind)."""
+    a2, d = signed(u, CFG) * units(CFG)
     gain = jnp.where(jnp.abs(a2) > 1e-6, a2 / jnp.sin(jnp.where(jnp.abs(a2) > 1e-6, a2, 1.0)), 1.0)
-    s = jnp.where(back, -1.0, 1.0) * d * gain / T
+    s = d * gain / T
     w = 2.0 * a2 / T
     return _limit(jnp.stack([s - w * B / 2, s + w * B / 2]))
 
@@ -57,7 +59,7 @@ def turn_then_arc(threshold):
     """Rotate in place towards the target when it is more than ``threshold`` rad off the line of travel."""
 
     def control(u):
-        a2 = jnp.where(jnp.abs(u[0]) > jnp.pi / 2, wrap_angle(u[0] - jnp.pi, jnp), u[0])
+        a2 = signed(u, CFG)[0] * jnp.pi
         spin = _limit(jnp.stack([-a2 * B / (2 * T), a2 * B / (2 * T)]))
         return jnp.where((jnp.abs(a2) > threshold) & (u[1] > 0.03), spin, arc(u))
 

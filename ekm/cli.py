@@ -229,7 +229,7 @@ def cmd_train(args) -> None:
     if world.walls or world.obstacles or world.unforeseen or world.moving:
         raise InputError(f"--world {args.world}: training needs an obstacle-free world (thesis ch. 4.3)")
     try:
-        cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons, priority=args.priority)
+        cfg = EKMConfig(mapping=args.mapping, neurons=args.neurons, priority=args.priority, chart=args.chart)
         tcfg = TrainConfig(steps=args.steps, trials=args.trials, arena=tuple(world.size))
     except ValueError as exc:
         raise InputError(f"ekm train: {exc}") from None
@@ -364,6 +364,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--neurons", type=positive_int, default=15, metavar="N", help="N x N lattice (default 15)")
     p.add_argument("--priority", type=positive_int, default=None, metavar="K",
                    help="|A(alpha)| of Eq. 4.4: the K neurons of most similar angle compete (default N)")
+    p.add_argument("--chart", choices=("signed", "polar"), default="signed",
+                   help="coordinates of the linear model c = M u (Eq. 4.1): signed (default; polar ahead, "
+                        "measured from the back with negative distance behind) or polar (as the thesis writes it)")
     p.add_argument("--steps", type=positive_int, default=100_000, help="training steps of 1.024 s (default 100000)")
     p.add_argument("--trials", type=positive_int, default=5, help="independent trials (default 5)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="training seed (default 0)")

@@ -11,7 +11,8 @@ from typing import NamedTuple
 import jax
 
 from ekm.config import EKMConfig
-from ekm.kohonen import forward_prior, initial_weights, neighbourhood, scaled, update_inputs, winner
+from ekm.charts import model_input
+from ekm.kohonen import forward_prior, initial_weights, neighbourhood, update_inputs, winner
 
 
 class DirectEKM(NamedTuple):
@@ -23,10 +24,11 @@ class DirectEKM(NamedTuple):
 
 def init(cfg: EKMConfig) -> DirectEKM:
     """An untrained map: input weights on the regular grid (ch. 6.1), outputs c_i = ``cfg.forward_init`` ·
-    M_fwd w̃_i — the same start as the indirect map (:func:`ekm.kohonen.forward_prior`): straight ahead,
-    no steering."""
+    M_fwd w̃_i — the same start as the indirect map (:func:`ekm.kohonen.forward_prior`, w̃_i in
+    ``cfg.chart`` coordinates): no steering, straight ahead (and, in the signed chart, straight back for
+    the neurons behind)."""
     w = initial_weights(cfg)
-    return DirectEKM(w=w, c=scaled(w, cfg) @ (cfg.forward_init * forward_prior(cfg)).T)
+    return DirectEKM(w=w, c=model_input(w, w, cfg) @ (cfg.forward_init * forward_prior(cfg)).T)
 
 
 def control(ekm: DirectEKM, u, cfg: EKMConfig):

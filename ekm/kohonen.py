@@ -29,19 +29,21 @@ def initial_weights(cfg: EKMConfig):
 
 
 def forward_prior(cfg: EKMConfig):
-    """M_fwd ``(2, 2)``: the untrained map's reflex, c = M_fwd ũ — both wheels forward in proportion to
-    the distance (c* at one step length d_scale), no steering at all.
+    """M_fwd ``(2, 2)``: the untrained map's reflex, c = M_fwd ũ — both wheels at the same speed, in
+    proportion to the (chart's) distance, c* at one step length d_scale; no steering at all. In the
+    signed chart (:mod:`ekm.charts`) that is straight ahead to targets ahead and straight back to
+    targets behind; in the polar chart always straight ahead.
 
     Scaled by ``cfg.forward_init`` it is the initial M_i of every neuron (and, through c_i = M_fwd w̃_i,
-    the initial outputs of a direct map). It only breaks the forward/backward symmetry of the task —
-    a forward and a backward arc reach the same displacement, and a map with no preferred direction of
-    travel (M_i = 0) settles on either, trial by trial, and learns worse (``forward_init`` = 0: final
-    E = 3.0, 3.9, 4.8 mm and D(25) 0.16–0.21 for seeds 0–2, against 2.1, 1.7, 1.7 mm and 0.12–0.13) — and
-    gives the untrained robot no way to reach a target: it cannot turn and drives off (untrained E ≈ 100 m
-    in the ch. 6.1 test). A prior that reverses for the neurons behind the robot (sign(cos α_i) M_fwd)
-    learned worse still (E = 45 mm, seed 0, measured with the neighbourhood ending at σ = 1). A prior
-    that also steered (the linearised one-step inverse) was rejected: untrained, it
-    already stopped within 2.7 mm of the targets, so it would be a hand-made controller, not a start.
+    the initial outputs of a direct map). It only breaks the forward/backward symmetry of the task — a
+    forward and a backward arc reach the same displacement — and gives the untrained robot no way to
+    reach a target: it cannot turn (untrained E ≈ 0.2 m in the ch. 6.1 test). In the signed chart, whose
+    coordinates already say which way to drive, it hardly matters (``forward_init`` = 0: E = 1.3, 1.5 mm,
+    T(25) = 7.89, 7.93 for seeds 0, 1, against 1.3, 1.2 mm and 7.82, 7.88). In the polar chart a map with
+    no preferred direction of travel (M_i = 0) settled on either, trial by trial, and learned worse
+    (E = 3.0, 3.9, 4.8 mm, seeds 0–2, against 2.1, 1.7, 1.7 mm). A prior that also steered
+    (the linearised one-step inverse) was rejected: untrained, it already stopped within 2.7 mm of the
+    targets, so it would be a hand-made controller, not a start.
     """
     return jnp.asarray([[0.0, cfg.c_max], [0.0, cfg.c_max]], dtype=jnp.float32)
 

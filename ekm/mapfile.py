@@ -30,7 +30,10 @@ from ekm.files import atomic_write
 from ekm.indirect import IndirectEKM
 
 FORMAT = "ekm-map"
-VERSION = 1
+# Version 2 added ``ekm.chart`` (the coordinates of the indirect maps' linear model, ``ekm.charts``).
+# Version 1 files, written before it, hold maps trained in the thesis's polar coordinates and still load.
+VERSION = 2
+READABLE = (1, VERSION)
 
 
 @dataclass(frozen=True)
@@ -97,12 +100,15 @@ def load_maps(path) -> SavedMaps:
     if not isinstance(meta, dict) or meta.get("format") != FORMAT:
         raise InputError(f"{where}: not an ekm map file (metadata format is {meta.get('format')!r})"
                          if isinstance(meta, dict) else f"{where}: metadata must be a JSON object")
-    if meta.get("version") != VERSION:
+    if meta.get("version") not in READABLE:
         raise InputError(f"{where}: map format version {meta.get('version')!r} is not supported "
-                         f"(this ekm reads version {VERSION})")
+                         f"(this ekm reads versions {', '.join(map(str, READABLE))})")
     try:
         known = {f.name for f in fields(EKMConfig)}
-        cfg = EKMConfig(**{k: v for k, v in meta["ekm"].items() if k in known})
+        ekm_meta = {k: v for k, v in meta["ekm"].items() if k in known}
+        if meta["version"] == 1:
+            ekm_meta["chart"] = "polar"
+        cfg = EKMConfig(**ekm_meta)
     except (KeyError, TypeError, ValueError) as exc:
         raise InputError(f"{where}: metadata 'ekm' is invalid ({exc})") from None
     out = _output_name(cfg.mapping)

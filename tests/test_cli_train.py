@@ -49,10 +49,11 @@ def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
 def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     d, out, _ = trained
     code, stdout, _ = run_cli(capsys, "train", "--mapping", "direct", "--neurons", "8", "--priority", "16",
-                              "--steps", "500", "--trials", "1", "--eval-every", "500", "--eval-targets", "5",
+                              "--chart", "polar", "--steps", "500", "--trials", "1", "--eval-every", "500", "--eval-targets", "5",
                               "--out", tmp_path / "dir.npz", "--json")
     assert code == 0
-    assert load_maps(tmp_path / "dir.npz").cfg.priority == 16  # --priority reaches the map and its file
+    saved = load_maps(tmp_path / "dir.npz").cfg
+    assert (saved.priority, saved.chart) == (16, "polar")  # --priority and --chart reach the map and its file
     code, stdout, _ = run_cli(capsys, "evaluate", out, tmp_path / "dir.npz", "--targets", "5", "--json",
                               "--plot", tmp_path / "both.png", "--paths", tmp_path / "paths.png")
     assert code == 0
@@ -71,6 +72,7 @@ def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     (["train", "--mapping", "direct", "--neurons", "1", "--out", "x.npz"], "neurons must be >= 2"),
     (["train", "--mapping", "direct", "--neurons", "5", "--priority", "26", "--out", "x.npz"], "priority must be in 1..25"),
     (["train", "--mapping", "direct", "--priority", "0", "--out", "x.npz"], "must be > 0"),
+    (["train", "--mapping", "direct", "--chart", "cartesian", "--out", "x.npz"], "invalid choice: 'cartesian'"),
     (["train", "--mapping", "direct"], "--out"),
     (["train", "--mapping", "direct", "--out", "x.txt"], "ending in .npz"),
     (["train", "--mapping", "direct", "--out", "x.npz", "--world", "three-rooms"], "obstacle-free"),

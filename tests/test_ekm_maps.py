@@ -121,12 +121,15 @@ def test_config_refuses_bad_values(bad):
         EKMConfig(**bad)
 
 
+@pytest.mark.parametrize("chart", ["signed", "polar"])
 @pytest.mark.parametrize("mapping", ["direct", "indirect"])
-def test_untrained_maps_drive_straight_ahead_and_cannot_steer(mapping):
-    """The forward reflex only breaks the forward/backward symmetry; it does not reach targets."""
-    cfg = EKMConfig(mapping=mapping)
+def test_untrained_maps_drive_straight_and_cannot_steer(mapping, chart):
+    """The forward reflex only breaks the forward/backward symmetry; it does not reach targets. In the
+    signed chart it drives straight back to targets behind, in the polar chart always forwards."""
+    cfg = EKMConfig(mapping=mapping, chart=chart)
     ekm = maps.init(cfg)
     for alpha in (-2.5, -1.0, 0.0, 0.7, 3.0):
         left, right = np.asarray(maps.control(ekm, jnp.asarray([alpha, 0.08]), cfg)[0], dtype=float)
         assert left == pytest.approx(right, abs=1e-4)  # no turning, whatever the direction
-        assert left > 0.0
+        forwards = chart == "polar" or abs(alpha) < np.pi / 2
+        assert (left > 0.0) if forwards else (left < 0.0)

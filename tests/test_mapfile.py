@@ -22,7 +22,7 @@ def stacked(cfg, trials=3):
 
 @pytest.mark.parametrize("mapping", ["direct", "indirect"])
 def test_round_trip_keeps_every_array_and_hyper_parameter(tmp_path, mapping):
-    cfg = EKMConfig(mapping=mapping, neurons=6, gamma_d=2.5, priority=4)
+    cfg = EKMConfig(mapping=mapping, neurons=6, gamma_d=2.5, priority=4, chart="polar")
     ekm = stacked(cfg)
     ekm = type(ekm)(ekm.w, ekm[1] + 0.01)
     path = save_maps(tmp_path / "m.npz", ekm, cfg, {"steps": 123, "seed": 7, "curve": [{"step": 0, "E_mm": 1.0}]})
@@ -128,3 +128,13 @@ def test_not_a_map_file(tmp_path):
         z.writestr("readme.txt", "hi")
     with pytest.raises(InputError):
         load_maps(other)
+
+
+def test_version_1_files_load_as_maps_of_the_polar_chart(good, tmp_path):
+    """Files written before ``chart`` existed (format version 1) hold maps trained on the thesis's polar input."""
+    meta = meta_of(good)
+    assert meta["version"] == VERSION == 2 and meta["ekm"]["chart"] == "signed"
+    old = meta | {"version": 1, "ekm": {k: v for k, v in meta["ekm"].items() if k != "chart"}}
+    loaded = load_maps(rewrite(good, tmp_path, metadata=np.array(json.dumps(old))))
+    assert loaded.cfg.chart == "polar" and loaded.cfg.neurons == 4
+    np.testing.assert_array_equal(np.asarray(loaded.ekm.w), np.load(good)["w"])

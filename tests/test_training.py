@@ -16,13 +16,13 @@ ARENA = (1.0, 1.0)
 
 @pytest.fixture(scope="module")
 def short_runs():
-    """Both mappings, 20,000 steps × 2 trials, seed 0, tested on 50 targets before and after training."""
+    """Both mappings, 30,000 steps × 2 trials, seed 0, tested on 50 targets before and after training."""
     out = {}
     for mapping in ("direct", "indirect"):
         cfg = EKMConfig(mapping=mapping)
-        tcfg = TrainConfig(steps=20_000, trials=2, arena=ARENA)
+        tcfg = TrainConfig(steps=30_000, trials=2, arena=ARENA)
         curve = {}
-        train(cfg, tcfg, seed=0, eval_every=20_000,
+        train(cfg, tcfg, seed=0, eval_every=30_000,
               on_eval=lambda step, m, cfg=cfg: curve.__setitem__(step, summarize(evaluate(m, cfg, ARENA))))
         out[mapping] = curve
     return out
@@ -30,15 +30,17 @@ def short_runs():
 
 def test_training_cuts_the_positioning_error_at_least_five_fold(short_runs):
     for mapping, curve in short_runs.items():
-        untrained, trained = curve[0]["E_mm"], curve[20_000]["E_mm"]
+        untrained, trained = curve[0]["E_mm"], curve[30_000]["E_mm"]
         assert trained * 5 <= untrained, (mapping, untrained, trained)
-        assert curve[20_000]["P"]["25"] > 0.9 > curve[0]["P"]["25"]
+        assert curve[30_000]["P"]["25"] > 0.9 > curve[0]["P"]["25"]
 
 
 def test_indirect_mapping_beats_direct_mapping_on_a_short_run(short_runs):
-    d, i = short_runs["direct"][20_000], short_runs["indirect"][20_000]
+    d, i = short_runs["direct"][30_000], short_runs["indirect"][30_000]
     assert i["E_mm"] < d["E_mm"]
     assert i["P"]["5"] > d["P"]["5"]
+    assert i["T"]["25"] < d["T"]["25"]
+    assert i["D"]["25"] < d["D"]["25"]
 
 
 def test_traced_paths_are_the_first_trial_of_the_same_test():

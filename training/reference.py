@@ -38,9 +38,18 @@ def neighbourhood(cfg: EKMConfig, k: int, sigma: float):
 
 
 def _local(u, w, cfg: EKMConfig):
-    """u in map units (α/π, d/d_scale), its angle unwrapped next to each neuron weight of ``w`` (..., 2)."""
-    alpha = w[..., 0] + _wrap(u[0] - w[..., 0])
-    return np.stack([alpha / np.pi, np.broadcast_to(u[1] / cfg.d_scale, alpha.shape)], axis=-1)
+    """ũ of the linear model next to each neuron weight of ``w`` (..., 2), in map units (α/π, d/d_scale).
+
+    ``cfg.chart`` "polar": (α, d), α unwrapped next to w_i; "signed": (α, d) ahead, (α ∓ π, -d) behind.
+    """
+    if cfg.chart == "polar":
+        alpha = w[..., 0] + _wrap(u[0] - w[..., 0])
+        d = u[1]
+    else:
+        behind = abs(u[0]) > np.pi / 2
+        alpha, d = (u[0] - np.sign(u[0]) * np.pi, -u[1]) if behind else (u[0], u[1])
+        alpha = np.full(w.shape[:-1], alpha)
+    return np.stack([alpha / np.pi, np.broadcast_to(d / cfg.d_scale, alpha.shape)], axis=-1)
 
 
 def control(mapping: str, w, out, u, cfg: EKMConfig):
@@ -51,7 +60,7 @@ def control(mapping: str, w, out, u, cfg: EKMConfig):
     c = out[k] @ _local(u, w[k], cfg)
     if np.all(np.abs(c) <= cfg.c_max):
         return c
-    return out[k] @ np.array([w[k, 0] / np.pi, w[k, 1] / cfg.d_scale])
+    return out[k] @ _local(w[k], w[k], cfg)
 
 
 def update(mapping: str, w, out, v, c_p, eta: float, sigma: float, cfg: EKMConfig):
