@@ -13,9 +13,10 @@ class EKMConfig:
     The sensory input is u_p = (α, d): direction (rad, wrapped to (-π, π]) and distance (m) of the target
     in the robot's frame. Inside the map both components are measured in units that make them of order
     one — α in half-turns (α/π) and d in step lengths (d/d_scale, the furthest one 1.024 s step can move,
-    ~0.16 m, thesis ch. 6.1): the winner distance (Eq. 4.3), the linear control model c_p = M ũ_p
-    (Eq. 4.1/4.5) and its gradient step (Eq. 4.9) act on ũ_p = (α/π, d/d_scale). This is a choice of units
-    (the thesis gives none); it keeps Eq. 4.9 stable for any η ≤ 1, since |ũ|² ≤ 2.
+    ~0.16 m, thesis ch. 6.1): the winner distance (Eq. 4.3) acts on (α/π, d/d_scale), and so do the linear
+    control model c_p = M ũ_p (Eq. 4.1/4.5) and its gradient step (Eq. 4.9), in the coordinates of
+    ``chart`` (:mod:`ekm.charts`). This is a choice of units (the thesis gives none); it keeps Eq. 4.9
+    stable for any η ≤ 1, since |ũ|² ≤ 2.
     """
 
     mapping: str = "indirect"  # "direct" (ch. 4.1) or "indirect" (ch. 4.2)
