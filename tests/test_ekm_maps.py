@@ -75,17 +75,23 @@ def test_eq_4_5_fallback_applies_when_a_single_wheel_exceeds_c_star():
     assert np.allclose(c, [0.025, 0.1])  # right wheel 0.2 > c*: both wheels from M_k w_k
 
 
-def test_indirect_update_follows_eq_4_7_and_4_9():
-    cfg = EKMConfig(neurons=3, priority=3)
+@pytest.mark.parametrize("chart, alpha", [("polar", 0.4), ("polar", 2.8), ("signed", 0.4), ("signed", 2.8)])
+def test_indirect_update_follows_eq_4_7_and_4_9(chart, alpha):
+    cfg = EKMConfig(neurons=3, priority=3, chart=chart)
     ekm = indirect.init(cfg)
     ekm = ekm._replace(M=0.05 * jax.random.normal(jax.random.PRNGKey(1), ekm.M.shape))
-    v, c_p, eta, sigma = jnp.asarray([0.4, 0.1]), jnp.asarray([0.05, 0.12]), 0.3, 0.8
+    v, c_p, eta, sigma = jnp.asarray([alpha, 0.1]), jnp.asarray([0.05, 0.12]), 0.3, 0.8
     new = indirect.update(ekm, v, c_p, eta, sigma, cfg)
     k = int(winner(ekm.w, v, cfg))
     g = np.asarray(neighbourhood(cfg, k, sigma))
     w, M = np.asarray(ekm.w), np.asarray(ekm.M)
-    v_loc = np.stack([(w[:, 0] + (0.4 - w[:, 0] + np.pi) % (2 * np.pi) - np.pi) / np.pi,
-                      np.full(9, 0.1 / cfg.d_scale)], axis=1)
+    if chart == "polar":  # (α, d), α unwrapped next to each α_i
+        v_loc = np.stack([(w[:, 0] + (alpha - w[:, 0] + np.pi) % (2 * np.pi) - np.pi) / np.pi,
+                          np.full(9, 0.1 / cfg.d_scale)], axis=1)
+    elif alpha < np.pi / 2:  # signed, ahead: (α, d)
+        v_loc = np.tile([alpha / np.pi, 0.1 / cfg.d_scale], (9, 1))
+    else:  # signed, behind: (α - π, -d)
+        v_loc = np.tile([(alpha - np.pi) / np.pi, -0.1 / cfg.d_scale], (9, 1))
     for i in range(9):
         dM = eta * g[i] * np.outer(np.asarray(c_p) - M[i] @ v_loc[i], v_loc[i])
         assert np.allclose(np.asarray(new.M[i]), M[i] + dM, atol=1e-6)

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from ekm.config import EKMConfig
+from robots.kinematics import egocentric
 from robots.params import KHEPERA
 from training import reference
 from training.online import TrainConfig, draw_noise, start, train_step
@@ -13,9 +14,9 @@ from training.online import TrainConfig, draw_noise, start, train_step
 STEPS = 60
 
 
-@pytest.mark.parametrize("mapping", ["direct", "indirect"])
-def test_jax_training_steps_equal_the_numpy_reference(mapping):
-    cfg = EKMConfig(mapping=mapping, neurons=7, priority=7)
+@pytest.mark.parametrize("mapping, chart", [("direct", "signed"), ("indirect", "signed"), ("indirect", "polar")])
+def test_jax_training_steps_equal_the_numpy_reference(mapping, chart):
+    cfg = EKMConfig(mapping=mapping, neurons=7, priority=7, chart=chart)
     tcfg = TrainConfig(steps=200)
     s = start(jax.random.PRNGKey(3), cfg, tcfg)
     # A trained-looking map: random outputs so that the winner, Eq. 4.5 and both branches all matter.
@@ -28,7 +29,9 @@ def test_jax_training_steps_equal_the_numpy_reference(mapping):
     step = jax.jit(lambda s, d, t: train_step(s, d, t, cfg, tcfg, KHEPERA))
 
     ref = [np.asarray(a, float) for a in (s.ekm.w, s.ekm[1], s.robot.pose, s.robot.wheels, s.target)] + [0]
+    behind = 0
     for t in range(STEPS):
+        behind += abs(float(egocentric(s.robot.pose, s.target)[0])) > np.pi / 2
         d = tuple(np.asarray(x[t], np.float32) for x in draws)
         s = step(s, tuple(jnp.asarray(x) for x in d), jnp.float32(t))
         ref = list(reference.train_step(mapping, *ref, d, float(t), cfg, tcfg))
@@ -41,3 +44,4 @@ def test_jax_training_steps_equal_the_numpy_reference(mapping):
         np.testing.assert_allclose(np.asarray(s.target), ref[4], atol=1e-5, rtol=0)
         assert int(s.age) == ref[5]
         ref = [np.asarray(a, float) for a in (s.ekm.w, s.ekm[1], s.robot.pose, s.robot.wheels, s.target)] + [int(s.age)]
+    assert 0 < behind < STEPS  # targets ahead and behind: both halves of the signed chart were used
