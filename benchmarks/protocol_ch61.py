@@ -20,7 +20,7 @@ import time
 import jax
 import numpy as np
 
-from ekm.config import EKMConfig
+from ekm.config import CHARTS, EKMConfig
 from evaluation.metrics import summarize
 from evaluation.protocol import evaluate
 from training.online import TrainConfig
@@ -54,7 +54,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--priority", type=int, default=None, help="|A(α)| of Eq. 4.4 (default: N)")
-    ap.add_argument("--chart", choices=("signed", "polar"), default="signed",
+    ap.add_argument("--chart", choices=CHARTS, default=CHARTS[0],
                     help="coordinates of the indirect map's linear model (ekm.charts; default signed)")
     args = ap.parse_args()
     for mapping in ("indirect", "direct"):

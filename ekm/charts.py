@@ -3,8 +3,9 @@
 The thesis writes the model on the polar input u_p = (α, d) itself. That is right for targets ahead:
 a circular arc to the point (α, d) turns the heading by 2α and has chord d, so its wheel speeds are
 v ∓ ω b/2 with ω = 2α/T and v = d α / (T sin α) — linear in d at fixed α, nearly linear in α, and
-zero at the target. Behind the robot it is wrong: there α ≈ ±π, so as d → 0 the model still commands
-c ≈ M (±π, 0) ≠ 0, and the forward arc to a point just behind is a near-full circle. A map trained on
+zero for a target dead ahead as d → 0. Behind the robot it is wrong: there α ≈ ±π, so as d → 0 the
+model still commands c ≈ M (±π, 0) ≠ 0, and the forward arc to a point just behind is a near-full
+circle. A map trained on
 it reaches targets behind by dithering and turning round (measured: ``chart="polar"``; README).
 
 The **signed** chart (the default) keeps the thesis's polar coordinates for targets ahead and measures
@@ -14,10 +15,12 @@ targets behind from the robot's back, with the distance counted negative:
     ũ = (α ∓ π, -d)       otherwise (α - π for α > π/2, α + π for α < -π/2).
 
 A target behind is then reached by the reversing arc — the mirror image of the forward one — and
-c → 0 at every target. The chart jumps at the robot's sides (|α| = π/2), where the forward and the
-reversing arc are equally long; the jump does not tear a neuron's model apart, because the one-step
-inverse above is odd, f(-α, -d) = -f(α, d), and so is the linear model: M (α ∓ π, -d) and M (α, d)
-describe the same arc there. Both charts are in map units: angles in half-turns (/π) and distances
+the command for a target dead behind vanishes with d, as for one dead ahead. The chart jumps at the
+robot's sides (|α| = π/2), where the forward and the reversing arc are equally long; the jump does
+not tear a neuron's model apart. Just behind a side, ũ is minus the ũ of the mirrored point just
+ahead of it, so a linear model commands minus that point's command; and the one-step inverse above
+is odd, f(-α, -d) = -f(α, d), so minus the forward arc to the point ahead is the reversing arc to the
+point behind. Both charts are in map units: angles in half-turns (/π) and distances
 in step lengths (/d_scale) (see :class:`ekm.config.EKMConfig`).
 """
 
@@ -27,8 +30,6 @@ import jax.numpy as jnp
 
 from ekm.config import EKMConfig
 from ekm.kohonen import wrap
-
-CHARTS = ("signed", "polar")
 
 
 def polar(u, w, cfg: EKMConfig):

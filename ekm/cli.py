@@ -12,6 +12,7 @@ import json
 import math
 import sys
 
+from ekm.config import CHARTS
 from ekm.errors import InputError
 
 
@@ -364,7 +365,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--neurons", type=positive_int, default=15, metavar="N", help="N x N lattice (default 15)")
     p.add_argument("--priority", type=positive_int, default=None, metavar="K",
                    help="|A(alpha)| of Eq. 4.4: the K neurons of most similar angle compete (default N)")
-    p.add_argument("--chart", choices=("signed", "polar"), default="signed",
+    p.add_argument("--chart", choices=CHARTS, default=CHARTS[0],
                    help="coordinates of the linear model c = M u (Eq. 4.1): signed (default; polar ahead, "
                         "measured from the back with negative distance behind) or polar (as the thesis writes it)")
     p.add_argument("--steps", type=positive_int, default=100_000, help="training steps of 1.024 s (default 100000)")

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
+CHARTS = ("signed", "polar")  # coordinates of the indirect maps' linear model (``ekm.charts``), default first
+
 
 @dataclass(frozen=True)
 class EKMConfig:
@@ -39,8 +41,8 @@ class EKMConfig:
     def __post_init__(self):
         if self.mapping not in ("direct", "indirect"):
             raise ValueError(f"mapping must be 'direct' or 'indirect', got {self.mapping!r}")
-        if self.chart not in ("signed", "polar"):
-            raise ValueError(f"chart must be 'signed' or 'polar', got {self.chart!r}")
+        if self.chart not in CHARTS:
+            raise ValueError(f"chart must be one of {', '.join(CHARTS)}, got {self.chart!r}")
         if self.neurons < 2:
             raise ValueError(f"neurons must be >= 2, got {self.neurons}")
         if self.priority is not None and not 1 <= self.priority <= self.neurons**2:
