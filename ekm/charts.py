@@ -5,8 +5,8 @@ a circular arc to the point (α, d) turns the heading by 2α and has chord d, so
 v ∓ ω b/2 with ω = 2α/T and v = d α / (T sin α) — linear in d at fixed α, nearly linear in α, and
 zero for a target dead ahead as d → 0. Behind the robot it is wrong: there α ≈ ±π, so as d → 0 the
 model still commands c ≈ M (±π, 0) ≠ 0, and the forward arc to a point just behind is a near-full
-circle. A map trained on
-it reaches targets behind by dithering and turning round (measured: ``chart="polar"``; README).
+circle. A map trained on it reaches targets behind by dithering and turning round (measured:
+``chart="polar"``; README).
 
 The **signed** chart (the default) keeps the thesis's polar coordinates for targets ahead and measures
 targets behind from the robot's back, with the distance counted negative:
@@ -20,8 +20,8 @@ robot's sides (|α| = π/2), where the forward and the reversing arc are equally
 not tear a neuron's model apart. Just behind a side, ũ is minus the ũ of the mirrored point just
 ahead of it, so a linear model commands minus that point's command; and the one-step inverse above
 is odd, f(-α, -d) = -f(α, d), so minus the forward arc to the point ahead is the reversing arc to the
-point behind. Both charts are in map units: angles in half-turns (/π) and distances
-in step lengths (/d_scale) (see :class:`ekm.config.EKMConfig`).
+point behind. Both charts are in map units: angles in half-turns (/π) and distances in step lengths
+(/d_scale) (see :class:`ekm.config.EKMConfig`).
 """
 
 from __future__ import annotations

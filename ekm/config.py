@@ -28,9 +28,10 @@ class EKMConfig:
     priority: int | None = None  # |A(α)| of Eq. 4.4: neurons of most similar angle that compete (None: N)
     d_scale: float = 0.16  # m; also the top of the initial distance grid (ch. 6.1: 0.16 m per step)
     c_max: float = 0.16  # c*: largest realisable wheel command, m/s (Eq. 4.5)
-    # Initial outputs as a fraction of the forward reflex M_fwd (``ekm.kohonen.forward_prior``): the
-    # untrained robot drives straight ahead, at half speed one step length from the target, and cannot
-    # steer. 0 gives M_i = 0 (c_i = 0), which lets training settle on backward motion at random.
+    # Initial outputs as a fraction of the reflex M_fwd (``ekm.kohonen.forward_prior``): the untrained
+    # robot drives straight (ahead, or back to targets behind in the signed chart), at half speed one step
+    # length from the target, and cannot steer. 0 gives M_i = 0 (c_i = 0); in the polar chart that lets
+    # training settle on backward motion at random.
     forward_init: float = 0.5
     # Coordinates of the target for the linear model c_p = M ũ_p (Eq. 4.1/4.5/4.9), ``ekm.charts``:
     # "signed" — the thesis's (α, d) ahead, measured from the robot's back with d negative behind, so the

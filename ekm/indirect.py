@@ -28,11 +28,10 @@ class IndirectEKM(NamedTuple):
 def init(cfg: EKMConfig) -> IndirectEKM:
     """An untrained map: input weights on the regular grid (ch. 6.1), M_i = ``cfg.forward_init`` · M_fwd.
 
-    The untrained robot drives straight ahead — in the signed chart straight back to targets behind — and
-    cannot steer (:func:`ekm.kohonen.forward_prior`):
-    the inaccurate start of ch. 4.3 ("Initially, the EKM has not been trained and the motor control
-    vectors c_p generated are inaccurate"); the command noise of training (``training.schedules``)
-    does the exploring.
+    The untrained robot drives straight ahead — in the signed chart straight back to targets behind —
+    and cannot steer (:func:`ekm.kohonen.forward_prior`): the inaccurate start of ch. 4.3 ("Initially,
+    the EKM has not been trained and the motor control vectors c_p generated are inaccurate"); the
+    command noise of training (``training.schedules``) does the exploring.
     """
     M = jnp.broadcast_to(cfg.forward_init * forward_prior(cfg), (cfg.size, 2, 2))
     return IndirectEKM(w=initial_weights(cfg), M=M)
