@@ -29,7 +29,7 @@ from __future__ import annotations
 import jax.numpy as jnp
 
 from ekm.config import EKMConfig
-from ekm.kohonen import wrap
+from ekm.kohonen import relative, scaled
 
 
 def polar(u, w, cfg: EKMConfig):
@@ -38,8 +38,7 @@ def polar(u, w, cfg: EKMConfig):
     A neuron at α_i = 3.0 rad thus sees an input at α = -3.1 rad as 3.18 rad, so its linear model is
     not torn apart at the ±π seam.
     """
-    alpha = w[..., 0] + wrap(u[..., 0] - w[..., 0])
-    return jnp.stack([alpha / jnp.pi, jnp.broadcast_to(u[..., 1] / cfg.d_scale, alpha.shape)], axis=-1)
+    return scaled(w, cfg) + relative(u, w, cfg)
 
 
 def signed(u, cfg: EKMConfig):
