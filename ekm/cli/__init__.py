@@ -1,0 +1,59 @@
+"""The ``ekm`` console script (DESIGN §6): the imperative shell around the packages.
+
+One module per command, each with ``add_parser(sub)`` and ``run(args)``; shared argument types are in
+:mod:`ekm.cli.args`. Each command imports what it needs inside its function, so ``ekm --help`` starts
+fast. Bad input of any kind raises :class:`ekm.errors.InputError`; :func:`main` prints its one line on
+stderr and exits with status 2 — never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ekm.cli import bench, evaluate, plan, train, worlds
+from ekm.cli.args import (finite_float, nonneg_float, nonneg_int, output_path, positive_float, positive_int,
+                          print_json, show_progress, xy_point)
+from ekm.errors import InputError
+
+#: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here.
+COMMANDS = (worlds, plan, train, evaluate, bench)
+
+__all__ = ["COMMANDS", "build_parser", "main", "finite_float", "nonneg_float", "nonneg_int", "output_path",
+           "positive_float", "positive_int", "print_json", "show_progress", "xy_point"]
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (``ekm train: --steps: must be > 0``) and exit status 2."""
+
+    def error(self, message):
+        raise InputError(f"{self.prog}: {message}")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="ekm", description="Extended Kohonen Maps for a Khepera-like robot (Low 2002).")
+    from ekm import __version__
+
+    parser.add_argument("--version", action="version", version=f"ekm {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    for command in COMMANDS:
+        command.add_parser(sub)
+    return parser
+
+
+def main(argv=None) -> int:
+    try:
+        args = build_parser().parse_args(argv)
+        args.func(args)
+    except InputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return InputError.exit_status
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # e.g. `ekm plan --json | head`: the reader left, nothing to report
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+    return 0

@@ -1,0 +1,60 @@
+"""``ekm plan``: plan checkpoints through a world with slippery cells or a baseline decomposition
+(thesis ch. 3)."""
+
+from __future__ import annotations
+
+from ekm.cli.args import nonneg_float, positive_float, print_json, xy_point
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("plan", help="plan checkpoints through a world (slippery cells, quadtree or grid)")
+    p.add_argument("--world", required=True, metavar="W", help="named world or world file")
+    p.add_argument("--start", type=xy_point, metavar="X,Y", help="start in metres (default: the world's)")
+    p.add_argument("--goal", type=xy_point, metavar="X,Y", help="goal in metres (default: the world's)")
+    p.add_argument("--cell", type=positive_float, metavar="M", help="bitmap cell size in metres (default 0.02)")
+    p.add_argument("--method", choices=("slippery", "quadtree", "grid"), default="slippery",
+                   help="cell decomposition (default slippery)")
+    p.add_argument("--at", type=nonneg_float, default=0.0, metavar="SECONDS",
+                   help="plan on the map known at this time (after the known events so far; default 0)")
+    p.add_argument("--plot", metavar="PNG", help="draw cells, graph, route and checkpoints to PNG")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=run)
+
+
+def run(args) -> None:
+    """Plan checkpoints through a world with slippery cells or a baseline decomposition (thesis ch. 3)."""
+    import time
+
+    from planner import DEFAULT_CELL, plan
+    from robots.worldfile import load_world
+
+    world = load_world(args.world)
+    t0 = time.perf_counter()
+    p = plan(world, args.start, args.goal, cell=args.cell or DEFAULT_CELL, method=args.method, t=args.at)
+    seconds = time.perf_counter() - t0
+    route = " -> ".join(map(str, p.route[:12])) + (f" -> ... ({len(p.route)} cells)" if len(p.route) > 12 else "")
+    if args.plot:
+        from planner.plot import save_plan
+
+        title = f"{world.name} at t = {args.at:g} s: {p.method}, {p.cells} cells, {len(p.graph.edges)} arcs"
+        save_plan(args.plot, p, world, args.at, title=title)
+    if args.json:
+        print_json({"method": p.method, "cells": p.cells, "graph_edges": len(p.graph.edges),
+                    "path_cells": list(p.route), "checkpoints": p.checkpoints.round(6).tolist(),
+                    "seconds": round(seconds, 6)})
+        return
+    ny, nx = p.bitmap.shape
+    print(f"{world.name} at t = {args.at:g} s: {p.method} decomposition of a {nx} x {ny} bitmap "
+          f"({p.cell:g} m cells, {int((p.bitmap == 0).sum())} free)")
+    print(f"  {p.cells} cells, {len(p.graph.edges)} graph edges")
+    print(f"  route: {route}")
+    print(f"  start ({p.start[0]:.3f}, {p.start[1]:.3f})")
+    k = len(p.checkpoints) - 1
+    for i, (x, y) in enumerate(p.checkpoints[:-1][:10], 1):
+        print(f"  checkpoint {i} ({x:.3f}, {y:.3f})")
+    if k > 10:
+        print(f"  ... {k - 10} more checkpoints (--json lists them all)")
+    print(f"  goal ({p.goal[0]:.3f}, {p.goal[1]:.3f})")
+    print(f"  checkpoint path {p.length:.3f} m, planned in {seconds:.3f} s")
+    if args.plot:
+        print(f"  plot written to {args.plot}")
