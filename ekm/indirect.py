@@ -44,11 +44,20 @@ def control(ekm: IndirectEKM, u, cfg: EKMConfig):
     wheels are *not* simply saturated, which would only drive a badly aligned robot straight ahead.
     """
     k = winner(ekm.w, u, cfg)
+    return command(ekm, u, k, cfg), k
+
+
+def command(ekm: IndirectEKM, u, k, cfg: EKMConfig):
+    """Eq. 4.5 for neuron ``k``: c = M_k ũ_p if every wheel is within ±c*, else M_k w̃_k.
+
+    :func:`control` calls it for the winner of ``u``; the neural fields (Eq. 5.5) for the winner of
+    their activity, which need not be the neuron nearest ``u``.
+    """
     Mk, wk = ekm.M[k], ekm.w[k]
     c_u = Mk @ model_input(u, wk, cfg)
     c_w = Mk @ model_input(wk, wk, cfg)
     feasible = jnp.all(jnp.abs(c_u) <= cfg.c_max)
-    return jnp.where(feasible, c_u, c_w), k
+    return jnp.where(feasible, c_u, c_w)
 
 
 def update(ekm: IndirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> IndirectEKM:
