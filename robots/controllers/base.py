@@ -1,0 +1,84 @@
+"""What every controller sees and how it is called: the observation, the controller, the IR helpers.
+
+DESIGN §5: a controller is a pure ``step(state, obs) -> (state, command)`` over pytrees, jitted once and
+reused by every run with the same parameters; the scenario runner (:mod:`evaluation.scenario`) is the
+imperative shell around it. The runner ticks at the base period (0.128 s, the obstacle-avoidance
+period of ch. 6.2) and hands each controller the same :class:`Observation`; a controller with slower
+modules (command fusion's 1.024 s target reaching, ch. 6.2.1) keeps its own clock in its state. The
+runner never asks which architecture it runs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, NamedTuple
+
+import jax.numpy as jnp
+import numpy as np
+
+from robots.params import KHEPERA, RobotParams, SensorSet
+
+
+class Observation(NamedTuple):
+    """One tick's input to a controller (all arrays; shapes fixed for a run, so one compilation serves it).
+
+    ``t``: time (s). ``ir``: ``(m,)`` IR readings from the body surface (m; ``inf`` = nothing within range,
+    :func:`robots.sensors.ir_readings`). ``target``: ``(2,)`` the current checkpoint as u_p = (α, d) from
+    the robot (ch. 4.1). ``target_id``: int, changes whenever the checkpoint does (reached, or replanned,
+    Fig. 6.5), so modules can react at once. ``final``: the checkpoint is the goal. ``pose``: ``(3,)`` the
+    robot's pose (x, y, θ) in the world — the localisation that turns the planner's checkpoints into u_p;
+    controllers that remember obstacles carry them with it. ``target_velocity``: ``(2,)`` world-frame
+    velocity of the checkpoint (non-zero only for a moving goal). ``markers``: ``(k, 5)`` the world's
+    declared moving objects, rows (x, y, vx, vy, radius) in the world frame (Samba's object markers).
+    """
+
+    t: Any
+    ir: Any
+    target: Any
+    target_id: Any
+    final: Any
+    pose: Any
+    target_velocity: Any
+    markers: Any
+
+
+@dataclass(frozen=True)
+class Controller:
+    """A ready-to-run architecture: its sensors, a fresh state and the jitted step.
+
+    ``init()`` returns the initial state pytree; ``step(state, obs)`` returns ``(state, command)`` with
+    ``command`` ``(2,)`` wheel speeds (m/s; the motors clip and round them, :mod:`robots.kinematics`).
+    ``spec`` is the architecture with every parameter resolved (what ``ekm run --json`` reports);
+    ``describe(state)`` optionally returns named arrays for plots (e.g. the neural fields of one tick).
+    """
+
+    name: str
+    spec: str
+    sensors: SensorSet
+    init: Callable[[], Any]
+    step: Callable[[Any, Observation], tuple[Any, Any]]
+    params: Any = None
+    robot: RobotParams = KHEPERA
+
+
+def proximity(readings, sensors: SensorSet, xp=jnp):
+    """u_o of Eq. 4.10: each sensor's activation in [0, 1] — 0 when nothing is within range, rising
+    linearly to 1 at contact (``1 - reading / range``), as a Khepera IR value rises when an obstacle nears."""
+    r = xp.asarray(readings)
+    return xp.where(xp.isfinite(r), 1.0 - xp.clip(r, 0.0, sensors.range_m) / sensors.range_m, 0.0)
+
+
+def sensor_angles(sensors: SensorSet) -> np.ndarray:
+    """The sensors' directions ``(m,)`` (rad, robot frame, + = left) as an array."""
+    return np.asarray(sensors.angles, dtype=np.float32)
+
+
+def hit_points(pose, readings, angles, radius: float = KHEPERA.radius, xp=np):
+    """World positions ``(m, 2)`` of what each sensor (directions ``angles``, robot frame) sees — centre +
+    (radius + reading) along its ray — and a mask ``(m,)`` of the sensors that see something."""
+    r = xp.asarray(readings)
+    seen = xp.isfinite(r)
+    phi = pose[2] + xp.asarray(angles)
+    reach = radius + xp.where(seen, r, 0.0)
+    pts = xp.stack([pose[0] + reach * xp.cos(phi), pose[1] + reach * xp.sin(phi)], axis=-1)
+    return pts, seen

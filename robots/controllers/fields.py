@@ -1,0 +1,249 @@
+"""Dynamic neural fields: cooperative EKMs (thesis ch. 5, Fig. 1.4b, Fig. 5.1).
+
+Every map here shares the trained indirect map's input weights w_i and control matrices M_i — nothing
+is retrained (ch. 5.3: "each neuron i in the obstacle avoidance EKMs has the same input weight vector
+w_i as the neuron i in the target reaching EKMs"). One tick of ``form=thesis``:
+
+1. target localisation EKM: winner s for the checkpoint u_p (Eq. 5.1 = Eq. 4.2–4.4);
+2. target field G_a(w_s, w_i) = exp(−D_a / σ_a²), D_a = γ_α Δα² + γ_d Δd² with γ_d ≫ γ_α (Eq. 5.3):
+   distance-sensitive and angle-insensitive, so the neurons at the target's distance in other
+   directions stay active — where the robot can go round an obstacle;
+3. one obstacle localisation EKM per sensor: winner s_j for u_j = (φ_j, r_j) of every sensor that sees
+   something; obstacle field b_i = Σ_j G_b(w_sj, w_i) (Eq. 5.6), a Gaussian stretched along the
+   obstacle's direction by δ_d so that the neurons *beyond* the obstacle are inhibited too;
+4. activity a_i = G_a − b_i (Eq. 5.2), winner k = argmax a_i (Eq. 5.4);
+5. c = M_k u_p if it is within ±c* and k = s, else M_k w_k (Eq. 5.5, :func:`ekm.indirect.command`).
+
+With no obstacle sensed b = 0, k = s and the command is the indirect map's (Eq. 4.5).
+
+Where the equations are silent, this module chooses (and says why):
+
+- **Units.** D_a and D_b are taken in the map's own units, ũ = (α/π, d/d_scale) with angle differences
+  wrapped (:class:`ekm.config.EKMConfig`), the units of the winner search (Eq. 4.3), so the fields' γ's
+  and δ's compare with the map's. δ_d's own argument — its exponent 0.01 and its τ — is in metres, the
+  unit in which the thesis gives τ (0.5 cm, ch. 6.2.2).
+- **δ_d.** Beyond the obstacle (d_i ≥ d_s), 1 − (d_i − d_s)^0.01 with the difference in metres is
+  0.03–0.09 for 1 mm … 5 cm: the Gaussian hardly decays along the obstacle's direction (the "stretch"),
+  and it is 1 at the obstacle itself. Before it, 1 + ((d_s − d_i)/τ)⁴ makes it vanish within about 2τ,
+  so the way up to the obstacle stays open.
+- **The two τ's.** The thesis names the sensor resolution τ = 0.5 cm (ch. 6.2.2) and δ_d's τ (ch. 5.3)
+  alike; both are 0.5 cm here, δ_d's being its own parameter (``tau``).
+- **Where an obstacle is.** A reading r_j is the distance from the body surface (ch. 6.2.2); u_j =
+  (φ_j, r_j) places the obstacle where the robot's *centre* would be when its body touched it — the
+  obstacle grown by the body radius, as the planner pads obstacles (ch. 3.2.2), in the space of centre
+  displacements that the w_i encode.
+
+**``form=extended``** (the default) is a departure, measured side by side with the thesis's form in
+``docs/scenarios.md``. As written, the fields keep nothing between ticks: each tick the robot takes the
+free direction nearest the target, dithers where that direction flips from side to side (mid-wall, the
+mouth of a U), and forgets a U's bottom once it is out of the sensors' 0.2 m. The extension keeps the
+fields' equations and adds three things, each with its reason:
+
+1. **remembered obstacles** (:mod:`robots.controllers.memory`): the IR hits are kept in the world frame
+   and fed to the obstacle field every tick from wherever the robot is — the obstacle fields
+   "remembered across steps and carried with the robot's odometry"; only those nearer than the target
+   count (an obstacle beyond the target cannot block the way to it);
+2. **obstacles where they are** (:func:`body_field`): the field of a remembered point is centred on
+   the point itself, not on its localisation winner — the lattice's ~24° rows would otherwise shift a
+   doorway's edges into the doorway — and its angular width is the angle the robot's body subtends at
+   the point's distance (Eq. 5.6's δ_α scaled by distance): a near obstacle blocks a wide fan of
+   directions, a far one a narrow one, whereas a fixed δ_α lets a wall seen from afar close a doorway;
+3. **commitment to a side** (:func:`committed_winner`, ``commit``): while a remembered obstacle lies
+   between the robot and the target, the robot keeps to the side it first turned to and takes the
+   first open direction turning from the target's direction that way — the target field measured one
+   way round only — so it goes round a wall or out of a U instead of dithering.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import partial
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+
+from ekm import indirect
+from ekm.config import EKMConfig
+from ekm.kohonen import relative, winner, wrap
+from robots.controllers import memory as mem
+from robots.controllers.base import Controller, Observation, sensor_angles
+from robots.params import KHEPERA, RobotParams
+
+FORMS = ("extended", "thesis")  # the default first
+
+#: The chart of the map the fields use when no map is given: the signed chart's neurons reach 0.16 m
+#: behind the robot as well as ahead (README, Fig. 6.2), so every direction has a full step to offer.
+DEFAULT_CHART = "signed"
+
+
+@dataclass(frozen=True)
+class FieldParams:
+    """Parameters of the neural fields; the defaults are the best documented variant (``docs/scenarios.md``)."""
+
+    sensors: str = field(default="long", metadata={"help": "IR ring: long (12 around, 17.5 cm; ch. 6.2.2) or short",
+                                                   "choices": ("short", "long")})
+    form: str = field(default="extended", metadata={
+        "help": "extended: remembered obstacles and commitment to a side (a departure); thesis: ch. 5 as written",
+        "choices": FORMS})
+    gamma_alpha: float = field(default=0.1, metadata={"help": "γ_α of the target field (Eq. 5.3), map units"})
+    gamma_d: float = field(default=1.0, metadata={"help": "γ_d of the target field (Eq. 5.3), map units"})
+    sigma_a: float = field(default=0.5, metadata={"help": "σ_a of the target field (Eq. 5.3)"})
+    delta_alpha: float = field(default=1.0, metadata={"help": "δ_α of the obstacle field (Eq. 5.6), map units; "
+                                                              "form=thesis"})
+    sigma_b: float = field(default=0.15, metadata={"help": "σ_b of the obstacle field (Eq. 5.6)"})
+    tau: float = field(default=0.005, metadata={"help": "τ of δ_d (Eq. 5.6), m"})
+    memory_s: float = field(default=60.0, metadata={"help": "form=extended: s an obstacle point is remembered"})
+    memory_points: int = field(default=256, metadata={"help": "form=extended: obstacle points remembered at most"})
+    merge: float = field(default=0.01, metadata={"help": "form=extended: m within which a hit refreshes a "
+                                                         "remembered point"})
+    clearance: float = field(default=0.01, metadata={"help": "form=extended: m kept between the body and a "
+                                                             "remembered obstacle"})
+    commit: bool = field(default=True, metadata={"help": "form=extended: keep to one side of an obstacle until "
+                                                         "the way to the target is open"})
+
+    def __post_init__(self):
+        for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
+        if self.clearance < 0:
+            raise ValueError(f"clearance must be >= 0, got {self.clearance}")
+        if self.memory_points < 1:
+            raise ValueError(f"memory_points must be >= 1, got {self.memory_points}")
+
+
+# ------------------------------------------------------------------------------------------ the fields
+
+def target_field(w, s, p: FieldParams, cfg: EKMConfig):
+    """G_a(w_s, w_i) ``(N²,)`` of Eq. 5.3 around the target localisation winner ``s``."""
+    diff = relative(w[s], w, cfg)
+    return jnp.exp(-(p.gamma_alpha * diff[:, 0] ** 2 + p.gamma_d * diff[:, 1] ** 2) / p.sigma_a**2)
+
+
+def delta_d(d_s, d_i, tau: float):
+    """δ_d(d_s, d_i) of Eq. 5.6 (distances in m): 1 − (d_i − d_s)^0.01 beyond the obstacle, 1 + ((d_s − d_i)/τ)⁴
+    before it."""
+    gap = d_i - d_s
+    beyond = gap >= 0
+    stretch = 1.0 - jnp.where(gap > 0, gap, 1.0) ** 0.01 * (gap > 0)
+    return jnp.where(beyond, stretch, 1.0 + (-gap / tau) ** 4)
+
+
+def obstacle_field(w, winners, seen, p: FieldParams, cfg: EKMConfig):
+    """b_i ``(N²,)`` of Eq. 5.6: the sum of G_b(w_s, w_i) over the obstacle winners ``winners`` ``(h,)`` whose
+    sensor saw something (``seen`` ``(h,)``; G_b = 0 otherwise)."""
+    ws = w[winners]  # (h, 2)
+    diff = relative(ws[:, None, :], w[None, :, :], cfg)  # (h, N², 2), w_s - w_i in map units
+    dd = delta_d(ws[:, None, 1], w[None, :, 1], p.tau)
+    g = jnp.exp(-(p.delta_alpha * diff[..., 0] ** 2 + dd * diff[..., 1] ** 2) / p.sigma_b**2)
+    return jnp.sum(jnp.where(seen[:, None], g, 0.0), axis=0)
+
+
+def body_field(w, u_obs, valid, radius: float, p: FieldParams, cfg: EKMConfig):
+    """b_i ``(N²,)`` of obstacles placed where they are (``form=extended``): Eq. 5.6's stretched Gaussian
+    centred on each obstacle's own (α_j, d_j), with δ_α scaled so that its angular half-width (where
+    G_b = e⁻¹) is the angle the robot's body subtends there (:func:`memory.cone_half_width`)."""
+    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=p.clearance) / jnp.pi  # map units
+    diff = relative(u_obs[:, None, :], w[None, :, :], cfg)  # (h, N², 2), u_j - w_i in map units
+    dd = delta_d(u_obs[:, None, 1], w[None, :, 1], p.tau)
+    g = jnp.exp(-(diff[..., 0] / half[:, None]) ** 2 - dd * diff[..., 1] ** 2 / p.sigma_b**2)
+    return jnp.sum(jnp.where(valid[:, None], g, 0.0), axis=0)
+
+
+def obstacle_inputs(readings, angles):
+    """u_j = (φ_j, r_j) ``(h, 2)`` of each sensor and whether it sees anything ``(h,)``."""
+    seen = jnp.isfinite(readings)
+    return jnp.stack([angles, jnp.where(seen, readings, 0.0)], axis=-1), seen
+
+
+class Tick(NamedTuple):
+    """The fields of one tick (for the controller and for plots): target winner ``s``, G_a, b and
+    a = G_a − b ``(N²,)``, and the obstacle inputs ``u_obs`` ``(h, 2)`` that count (``valid``)."""
+
+    s: jax.Array
+    g_a: jax.Array
+    b: jax.Array
+    a: jax.Array
+    u_obs: jax.Array
+    valid: jax.Array
+
+
+class FieldState(NamedTuple):
+    """What the fields carry between ticks: the remembered obstacles (``form=extended``), the side the robot
+    keeps to (+1 left, −1 right, 0 none) and the last winners s and k (for plots)."""
+
+    memory: mem.Memory
+    side: jax.Array
+    s: jax.Array
+    k: jax.Array
+
+
+def init(p: FieldParams) -> FieldState:
+    return FieldState(mem.empty(p.memory_points if p.form == "extended" else 1), jnp.asarray(0.0, jnp.float32),
+                      jnp.asarray(0, jnp.int32), jnp.asarray(0, jnp.int32))
+
+
+def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg: EKMConfig, *, radius: float,
+           range_m: float) -> tuple[FieldState, Tick]:
+    """Eq. 5.1–5.3 and 5.6 for one tick. ``form=extended`` first adds the tick's readings to the remembered
+    obstacles, then builds b from those nearer than the target (:func:`body_field`)."""
+    s = winner(ekm.w, obs.target, cfg)
+    g_a = target_field(ekm.w, s, p, cfg)
+    if p.form == "extended":
+        memory = mem.update(state.memory, obs.pose, obs.ir, angles, obs.t, radius=radius, range_m=range_m,
+                            merge=p.merge, forget_after=p.memory_s)
+        state = state._replace(memory=memory)
+        u_obs, valid = mem.egocentric(memory, obs.pose, radius=radius)
+        valid = valid & (u_obs[:, 1] < obs.target[1])
+        b = body_field(ekm.w, u_obs, valid, radius, p, cfg)
+    else:
+        u_obs, valid = obstacle_inputs(obs.ir, angles)
+        winners = jax.vmap(lambda u: winner(ekm.w, u, cfg))(u_obs)
+        b = obstacle_field(ekm.w, winners, valid, p, cfg)
+    return state, Tick(s, g_a, b, g_a - b, u_obs, valid)
+
+
+def committed_winner(w, k, b, target, side, u_obs, valid, radius: float, p: FieldParams, cfg: EKMConfig):
+    """The winner when the robot commits to one side of an obstacle (``form=extended``; see the module
+    docstring). Returns ``(k, side)``.
+
+    While a remembered obstacle lies between the robot and the target (:func:`memory.blocked_along` the
+    target's direction), the robot keeps to the side the thesis's winner ``k`` lay on when that began,
+    and takes the first *open* direction met turning from the target's direction towards that side —
+    open: no remembered obstacle along it nearer than the target — as a robot going round an obstacle
+    with it on the other hand. Among the neurons of that direction, the target field (Eq. 5.3, its angle
+    measured one way round only) picks the one nearest the target's distance. When no direction is open
+    the thesis's winner stands; when the way to the target is open again, the commitment ends.
+    """
+    reach = target[1]
+    way_blocked = mem.blocked_along(target[None, 0], reach, u_obs, valid, radius=radius, clearance=p.clearance)[0]
+    first_side = jnp.where(wrap(w[k, 0] - target[0]) >= 0, 1.0, -1.0)
+    side = jnp.where(way_blocked, jnp.where(side == 0, first_side, side), 0.0)
+    swept = jnp.mod(side * (w[:, 0] - target[0]), 2.0 * jnp.pi) / jnp.pi  # 0 … 2 half-turns, one way round
+    dd = relative(w[winner(w, target, cfg)], w, cfg)[:, 1]
+    g = jnp.exp(-(p.gamma_alpha * swept**2 + p.gamma_d * dd**2) / p.sigma_a**2)
+    open_ = ~mem.blocked_along(w[:, 0], reach, u_obs, valid, radius=radius, clearance=p.clearance)
+    k_side = jnp.where(jnp.any(open_), jnp.argmax(jnp.where(open_, g - b, -jnp.inf)), k)
+    return jnp.where(side != 0, k_side, k), side
+
+
+@partial(jax.jit, static_argnames=("cfg", "p", "radius", "range_m"))
+def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p: FieldParams, radius: float,
+         range_m: float):
+    """One tick of the cooperative EKMs: winner k of a = G_a − b (Eq. 5.2, 5.4) and its command (Eq. 5.5)."""
+    state, f = fields(state, ekm, obs, angles, p, cfg, radius=radius, range_m=range_m)
+    k = jnp.argmax(f.a)
+    if p.form == "extended" and p.commit:
+        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, f.u_obs, f.valid, radius, p, cfg)
+        state = state._replace(side=side)
+    u = jnp.where(k == f.s, obs.target, ekm.w[k])  # Eq. 5.5: M_k u_p only for k = s, else M_k w_k
+    return state._replace(s=f.s.astype(jnp.int32), k=k.astype(jnp.int32)), indirect.command(ekm, u, k, cfg)
+
+
+def build(params: FieldParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPERA, spec: str = "fields") -> Controller:
+    """Neural fields over the indirect map ``ekm`` (one trial) on ``robot``."""
+    sensors = robot.short_range if params.sensors == "short" else robot.long_range
+    angles = jnp.asarray(sensor_angles(sensors))
+    run = partial(step, ekm=ekm, angles=angles, cfg=cfg, p=params, radius=robot.radius, range_m=sensors.range_m)
+    return Controller(name="fields", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
+                      robot=robot)

@@ -1,0 +1,104 @@
+"""Command fusion (thesis ch. 4.5, Fig. 1.4a): indirect-EKM target reaching + Braitenberg avoidance.
+
+c = β c_p + (1 − β) c_o (Eq. 4.11): c_p is the indirect map's command towards the current checkpoint
+(Eq. 4.5, :func:`ekm.indirect.control`), c_o = Z u_o the type-3C vehicle's (Eq. 4.10,
+:mod:`robots.controllers.braitenberg`). The two modules run at their own rates: avoidance every tick
+(0.128 s), target reaching every ``period`` (1.024 s in ch. 6.2.1, 0.128 s in ch. 6.2.2) and at once
+when the checkpoint changes ("the target reaching module can react immediately to the change of a
+checkpoint", Fig. 6.5). Each new module output updates the shared motor state (the last c_p and c_o),
+and the fused command is sent whenever it changes; sending an unchanged command changes nothing.
+
+Two readings of ch. 4.5, chosen by measurement (``docs/scenarios.md``):
+
+- **β and the stop.** Eq. 4.11 scales target reaching by β even in free space, and the Khepera's
+  speed unit (8 mm/s) rounds β c_p to zero 1/β times further from the target than c_p itself: with
+  β = 0.5 the robot stops about 5.3 mm from a checkpoint it must reach within 5 mm (ch. 6.2.1). β =
+  0.85 keeps it within reach; Z's gains are scaled up to keep (1 − β) Z as strong.
+- **When target reaching speaks.** "In the presence of obstacles, additional control signal may be
+  sent as and when obstacles are detected" (ch. 4.5): with ``refresh="sensed"`` (the default) target
+  reaching also recomputes c_p at every tick on which an obstacle is sensed, because the avoidance has
+  moved the robot off the arc that c_p was computed for; in free space it keeps its 1.024 s period.
+  ``refresh="clock"`` keeps it strictly periodic.
+
+Command fusion drives the polar-chart map by default (:data:`DEFAULT_CHART`): a signed-chart map
+reverses onto targets behind (:mod:`ekm.charts`), and a Khepera's short-range sensors — six ahead, two
+behind — cannot guard a robot that backs into what the avoidance turned it away from.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import partial
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+
+from ekm import indirect
+from ekm.config import EKMConfig
+from robots.controllers.base import Controller, Observation, proximity
+from robots.controllers.braitenberg import avoid, z_matrix
+from robots.params import KHEPERA, RobotParams, SensorSet
+
+
+@dataclass(frozen=True)
+class FusionParams:
+    """Parameters of command fusion; the defaults are the thesis's ch. 6.2.1 set-up."""
+
+    sensors: str = field(default="short", metadata={"help": "IR ring: short (8 Khepera sensors, 5 cm) or long "
+                                                            "(12 around, 17.5 cm)", "choices": ("short", "long")})
+    beta: float = field(default=0.85, metadata={"help": "β of Eq. 4.11, the weight of target reaching"})
+    period: float = field(default=1.024, metadata={"help": "target-reaching period in s (1.024 in ch. 6.2.1, "
+                                                           "0.128 in ch. 6.2.2)"})
+    cross: float = field(default=4.0, metadata={"help": "Z: m/s from a forward sensor to the opposite motor "
+                                                        "at full activation (sent as -cross)"})
+    same: float = field(default=0.4, metadata={"help": "Z: m/s of the other connections (small)"})
+    refresh: str = field(default="sensed", metadata={
+        "help": "when target reaching recomputes c_p: clock (every period) or sensed (also every tick while an "
+                "obstacle is sensed)", "choices": ("clock", "sensed")})
+
+    def __post_init__(self):
+        if not 0.0 < self.beta <= 1.0:
+            raise ValueError(f"beta must be in (0, 1], got {self.beta}")
+        if self.cross < 0 or self.same < 0:
+            raise ValueError(f"cross and same must be >= 0, got {self.cross}, {self.same}")
+
+
+#: The chart of the map command fusion drives when no map is given (see the module docstring).
+DEFAULT_CHART = "polar"
+
+
+class FusionState(NamedTuple):
+    """The shared motor state: the last target-reaching command, when the next is due, for which checkpoint."""
+
+    c_p: jax.Array  # (2,) m/s
+    due: jax.Array  # s: time of the next target-reaching update
+    target_id: jax.Array  # the checkpoint c_p was computed for
+
+
+def init() -> FusionState:
+    return FusionState(jnp.zeros(2, jnp.float32), jnp.zeros((), jnp.float32), jnp.asarray(-1, jnp.int32))
+
+
+@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed"))
+def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
+         sensors: SensorSet, on_sensed: bool = False):
+    """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR, fuse (Eq. 4.11)."""
+    refresh = (obs.t >= state.due - 1e-6) | (obs.target_id != state.target_id)
+    if on_sensed:
+        refresh = refresh | jnp.any(jnp.isfinite(obs.ir))
+    c_p = jnp.where(refresh, indirect.control(ekm, obs.target, cfg)[0], state.c_p)
+    due = jnp.where(refresh, obs.t + period, state.due)
+    c_o = avoid(z, proximity(obs.ir, sensors))
+    c = beta * c_p + (1.0 - beta) * c_o
+    return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32)), c
+
+
+def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPERA, spec: str = "fusion") -> Controller:
+    """Command fusion driven by the indirect map ``ekm`` (one trial) on ``robot``."""
+    sensors = robot.short_range if params.sensors == "short" else robot.long_range
+    robot.substeps(params.period)  # a whole number of physics sub-steps, or ValueError
+    z = jnp.asarray(z_matrix(sensors, params.cross, params.same))
+    run = partial(step, ekm=ekm, z=z, cfg=cfg, beta=params.beta, period=params.period, sensors=sensors,
+                  on_sensed=params.refresh == "sensed")
+    return Controller(name="fusion", spec=spec, sensors=sensors, init=init, step=run, params=params, robot=robot)
