@@ -1,0 +1,301 @@
+"""The scenario runner: one robot, one world, one architecture, one seed (DESIGN §5, §6; thesis ch. 6.2).
+
+The imperative shell around a pure controller (:mod:`robots.controllers`): the pymunk world
+(:class:`robots.world.PymunkWorld` — walls, unforeseen, moving and event obstacles, contact, IR, the
+robot's motor and sensor noise), the slippery-cell planner (:mod:`planner`) and a trap monitor
+(:mod:`evaluation.monitor`). Every 0.128 s tick (the obstacle-avoidance period of ch. 6.2):
+
+1. if a known event changed the planner's map since the last tick, replan from where the robot is
+   (Fig. 6.5) and hand the controller the new first checkpoint;
+2. sense, and give the controller one :class:`~robots.controllers.base.Observation`: the IR readings,
+   the current checkpoint as u_p = (α, d), the declared moving objects;
+3. send its command for one period and read the sub-step trace: a checkpoint counts as reached the
+   first time the robot's centre is within 5 mm of it (ch. 6.2.1), on the 16 ms sub-steps;
+4. at the goal the robot must stop (ch. 6.2.1): the run ends when, with the centre within 5 mm of the
+   goal, the controller's command rounds to zero (Eq. 6.1's "motor control c = 0"), or the centre has
+   stayed within the 5 mm for ``settle_s`` (one 1.024 s target-reaching period) — a precise map
+   often keeps nudging at the millimetre scale instead of sending an exact zero (README, "Capped
+   targets"), and then the executive halts the motors; a robot passing through the goal does not
+   stay within 5 mm for a second. A moving goal (Samba's scenario) is reached when it comes under
+   the robot's body (centre within the body radius);
+5. the trap monitor reports ``trapped`` when the robot has come no closer to its checkpoint for a set
+   time (thesis 7.1.1, cognizant failure); with ``recover``, the obstacle points the robot sensed
+   while trapped join the planner's map and the route is replanned around them.
+
+A run **reaches** the goal when the robot stops there without a single collision on the way: every
+contact of its body with anything (wall, obstacle, mover) is counted and never hidden. A run is a
+pure function of (world, controller, seed): the world's noise streams are seeded, the controller is
+pure, and nothing else is random.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ekm.errors import InputError
+from evaluation.monitor import TrapMonitor
+from planner import DEFAULT_CELL, NoRouteError, map_changed, plan, replan
+from robots.controllers.base import Controller, Observation, hit_points
+from robots.geometry import Circle, bounds
+from robots.kinematics import egocentric, is_stop_command
+from robots.world import PymunkWorld
+from robots.worldfile import World
+
+
+@dataclass(frozen=True)
+class ScenarioConfig:
+    """How a run is judged. Defaults: ch. 6.2.1's 5 mm checkpoints; the rest is this package's choice."""
+
+    checkpoint_tolerance: float = 0.005  # m: a checkpoint (and the goal) is reached within 5 mm (ch. 6.2.1)
+    settle_s: float = 1.024  # s within the goal's tolerance after which the robot counts as stopped there
+    capture_radius: float | None = None  # m: a moving goal is caught within this; None = the body radius
+    time_limit: float = 120.0  # s of simulated time
+    trap_after: float = 30.0  # s without progress towards the checkpoint before the monitor says trapped
+    trap_progress: float = 0.01  # m: coming this much closer than ever before counts as progress
+    recover: bool = False  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
+    max_recoveries: int = 3  # traps recovered from before a run gives up
+    sensed_radius: float = 0.01  # m: an obstacle point added to the map on recovery is a disc this big
+    cell: float = DEFAULT_CELL  # m: the planner's bitmap cell
+
+    def __post_init__(self):
+        for name in ("checkpoint_tolerance", "settle_s", "time_limit", "trap_after", "trap_progress", "sensed_radius", "cell"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+                raise InputError(f"scenario: {name} must be a positive number, got {value!r}")
+        if self.capture_radius is not None and not self.capture_radius > 0:
+            raise InputError(f"scenario: capture_radius must be > 0, got {self.capture_radius!r}")
+        if self.max_recoveries < 0:
+            raise InputError(f"scenario: max_recoveries must be >= 0, got {self.max_recoveries}")
+
+
+@dataclass(frozen=True)
+class PlanChange:
+    """A plan the robot followed from ``t``: why it was made and its checkpoints ``(k, 2)`` (goal last)."""
+
+    t: float
+    reason: str  # "start", "event" (a known change of the map, Fig. 6.5) or "recovery" (after a trap)
+    checkpoints: np.ndarray
+
+
+@dataclass
+class RunRecord:
+    """Everything a run did: the outcome (DESIGN §6) and the traces the plots draw."""
+
+    world: World
+    architecture: str
+    seed: int
+    map_source: str = ""
+    trial: int = 0
+    reached: bool = False
+    arrived: bool = False
+    time_s: float = 0.0
+    path_m: float = 0.0
+    collisions: int = 0
+    checkpoints_reached: int = 0
+    replans: int = 0
+    recoveries: int = 0
+    trapped: bool = False
+    final_distance_m: float = math.nan
+    ended: str = ""
+    period: float = 0.128
+    poses: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))  # (S, 3): start, then every sub-step
+    times: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (S,) time of each pose
+    commands: list = field(default_factory=list)  # (t, v_l, v_r) sent each tick
+    plans: list = field(default_factory=list)  # PlanChange
+    checkpoint_log: list = field(default_factory=list)  # (t, x, y) of each checkpoint reached
+    collision_log: list = field(default_factory=list)  # (t, x, y) of the robot at each new contact
+    trap_log: list = field(default_factory=list)  # (t, x, y) where the monitor fired
+    hits: list = field(default_factory=list)  # (t, (n, 2) world points the IR saw)
+    goal_path: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))  # (ticks, 2) goal at each tick
+
+    def outcome(self) -> dict:
+        """The ``ekm run --json`` record: DESIGN §6's keys, then ``arrived`` (stopped at the goal, collisions or
+        not), ``recoveries``, ``ended`` (why the run stopped), ``seed``, ``map`` and ``trial`` (which map drove)."""
+        return {"world": self.world.name, "architecture": self.architecture, "reached": self.reached,
+                "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
+                "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,
+                "final_distance_m": round(self.final_distance_m, 5), "arrived": self.arrived,
+                "recoveries": self.recoveries, "ended": self.ended, "seed": self.seed, "map": self.map_source,
+                "trial": self.trial}
+
+
+def mover_radius(shape) -> float:
+    """Radius of the disc round a moving shape's origin that holds it (its marker's size)."""
+    x0, y0, x1, y1 = bounds(shape)
+    return float(max(math.hypot(x, y) for x in (x0, x1) for y in (y0, y1))) if not isinstance(shape, Circle) \
+        else math.hypot(*shape.center) + shape.radius
+
+
+def run_scenario(world: World, controller: Controller, seed: int = 0, config: ScenarioConfig = ScenarioConfig(),
+                 on_tick=None) -> RunRecord:
+    """Drive ``controller`` through ``world`` from its start to its goal (see the module docstring).
+
+    ``on_tick(t)`` is called after every tick (progress bars). Raises :class:`InputError` if the planner
+    finds no route at the start (a world it cannot route through, or a start inside an obstacle).
+    """
+    robot = controller.robot
+    period = robot.avoid_period
+    sim = PymunkWorld(world, params=robot, seed=seed)
+    capture = robot.radius if config.capture_radius is None else config.capture_radius
+    rec = RunRecord(world=world, architecture=controller.spec, seed=seed, period=period)
+    known = world  # the planner's map: the world's known shapes (+ what recovery adds)
+    current = plan(world, t=0.0, cell=config.cell)
+    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
+    index, target_id = 0, 0
+    monitor = TrapMonitor(config.trap_after, config.trap_progress)
+    radii = np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32)
+    state = controller.init()
+    poses, times = [sim.pose], [0.0]
+    last_t, collisions, settled_since = 0.0, 0, None
+    ticks = int(math.ceil(config.time_limit / period - 1e-9))
+
+    def target_xy(t: float) -> np.ndarray:
+        final = index == len(current.checkpoints) - 1
+        return np.asarray(world.goal_at(t) if final else current.checkpoints[index], dtype=float)
+
+    def replan_from(t: float, reason: str) -> bool:
+        nonlocal current, index, target_id
+        try:
+            current = replan(current, known, sim.pose[:2], t)
+        except InputError:  # NoRouteError included: the change left no way through
+            return False
+        rec.plans.append(PlanChange(t, reason, current.checkpoints.copy()))
+        rec.replans += 1
+        index, target_id = 0, target_id + 1
+        monitor.reset(t)
+        return True
+
+    for tick in range(ticks):
+        t = sim.t
+        if map_changed(world, last_t, t) and not replan_from(t, "event"):
+            rec.ended = "no route after a change of the map"
+            break
+        last_t = t
+        # Checkpoints already within reach (two that coincide at a corner, or a replan starting on one).
+        while index < len(current.checkpoints) - 1 and \
+                np.linalg.norm(sim.pose[:2] - current.checkpoints[index]) < config.checkpoint_tolerance:
+            rec.checkpoint_log.append((t, *current.checkpoints[index]))
+            index, target_id = index + 1, target_id + 1
+            monitor.reset(t)
+        final = index == len(current.checkpoints) - 1
+        goal = target_xy(t)
+        rec.goal_path = np.vstack([rec.goal_path, goal[None]]) if world.moving_goal else rec.goal_path
+        pose = sim.pose
+        ir = sim.sense(controller.sensors)
+        pts, seen = hit_points(pose, ir, controller.sensors.angles, robot.radius)
+        if seen.any():
+            rec.hits.append((t, pts[seen]))
+        obs = Observation(
+            t=np.float32(t), ir=ir.astype(np.float32),
+            target=np.asarray(egocentric(pose, goal), np.float32), target_id=np.int32(target_id),
+            final=np.bool_(final), pose=pose.astype(np.float32),
+            target_velocity=np.asarray(world.goal.velocity(t) if (final and world.moving_goal) else (0.0, 0.0),
+                                       np.float32),
+            markers=_markers(world, sim, t, radii))
+        state, command = controller.step(state, obs)
+        command = np.asarray(command, dtype=float)
+        distance = float(np.linalg.norm(pose[:2] - goal))
+        inside = final and not world.moving_goal and distance < config.checkpoint_tolerance
+        settled_since = (settled_since if settled_since is not None else t) if inside else None
+        if inside and (is_stop_command(command, robot) or t - settled_since >= config.settle_s - 1e-9):
+            sim.step(np.zeros(2), period=period)  # the wheels spin down (motor lag), the robot comes to rest
+            poses.extend(sim.trace)
+            times.extend(t + robot.dt * np.arange(1, len(sim.trace) + 1))
+            rec.arrived, rec.ended = True, "stopped at the goal"
+            rec.checkpoint_log.append((t, *goal))
+            break
+        rec.commands.append((t, float(command[0]), float(command[1])))
+        _, trace = sim.step(command, period=period)
+        poses.extend(trace)
+        times.extend(t + robot.dt * np.arange(1, len(trace) + 1))
+        if sim.collisions > collisions:
+            rec.collision_log.extend([(sim.t, *sim.pose[:2])] * (sim.collisions - collisions))
+            collisions = sim.collisions
+        if on_tick is not None:
+            on_tick(sim.t)
+        if final and world.moving_goal:
+            sub_t = t + robot.dt * np.arange(1, len(trace) + 1)
+            goals = np.array([world.goal_at(s) for s in sub_t])
+            if np.any(np.linalg.norm(trace[:, :2] - goals, axis=1) < capture):
+                rec.arrived, rec.ended = True, "caught the moving goal"
+                rec.checkpoint_log.append((sim.t, *world.goal_at(sim.t)))
+                break
+        elif not final and np.any(np.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance):
+            rec.checkpoint_log.append((sim.t, *goal))
+            index, target_id = index + 1, target_id + 1
+            monitor.reset(sim.t)
+            continue
+        if monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - target_xy(sim.t)))):
+            rec.trap_log.append((sim.t, *sim.pose[:2]))
+            if not config.recover or rec.recoveries >= config.max_recoveries:
+                rec.trapped, rec.ended = True, "trapped"
+                break
+            rec.recoveries += 1
+            known = _with_sensed(known, rec.hits, sim.t - config.trap_after, config.sensed_radius)
+            if not replan_from(sim.t, "recovery"):
+                rec.trapped, rec.ended = True, "trapped (no route around the sensed obstacle)"
+                break
+    else:
+        rec.ended = "time limit"
+
+    rec.poses, rec.times = np.asarray(poses), np.asarray(times)
+    rec.time_s = float(rec.times[-1])
+    rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
+    rec.collisions = sim.collisions
+    rec.checkpoints_reached = len(rec.checkpoint_log)
+    rec.final_distance_m = float(np.linalg.norm(sim.pose[:2] - np.asarray(world.goal_at(sim.t))))
+    rec.reached = rec.arrived and rec.collisions == 0
+    return rec
+
+
+def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.ndarray:
+    """Object markers ``(k, 5)`` of the moving obstacles: (x, y, vx, vy, radius), world frame."""
+    if not world.moving:
+        return np.zeros((0, 5), np.float32)
+    pos = sim.moving_positions()
+    vel = np.array([m.path.velocity(t) for m in world.moving])
+    return np.concatenate([pos, vel, radii[:, None]], axis=1).astype(np.float32)
+
+
+def _with_sensed(known: World, hits: list, since: float, radius: float) -> World:
+    """``known`` with the obstacle points sensed from ``since`` on that the map does not already explain
+    (further than ``radius`` from its walls and obstacles) added as small discs (thesis 7.1.1: recovery)."""
+    recent = [pts for t, pts in hits if t >= since]
+    if not recent:
+        return known
+    pts = np.unique(np.round(np.vstack(recent) / radius) * radius, axis=0)  # one disc per radius-sized cell
+    w, h = known.size
+    pts = pts[(pts[:, 0] > 0) & (pts[:, 0] < w) & (pts[:, 1] > 0) & (pts[:, 1] < h)]
+    new = pts[known.clearance(pts, known_only=True) > radius] if len(pts) else pts
+    discs = tuple(Circle((float(x), float(y)), radius) for x, y in new)
+    return replace(known, obstacles=known.obstacles + discs)
+
+
+def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int | None = None,
+                     config: ScenarioConfig = ScenarioConfig(), on_tick=None) -> RunRecord:
+    """Run the architecture ``spec`` (:class:`robots.controllers.spec.ArchitectureSpec`) through ``world``.
+
+    ``maps``: a :class:`ekm.mapfile.SavedMaps` (``ekm train``'s file), or None for the shipped map of the
+    architecture's chart (:mod:`ekm.data`). ``trial``: which of its trials drives; by default
+    ``seed % trials``, so that seeds 0–9 run every trained map of a 5-trial file twice, each time with
+    other noise.
+    """
+    import jax
+
+    if maps is None:
+        from ekm.data import load_default_map
+
+        maps, source = load_default_map(spec.default_chart), f"shipped {spec.default_chart}-chart map"
+    else:
+        source = str(maps.meta.get("source", "")) or "given map"
+    if trial is None:
+        trial = seed % maps.trials
+    if not 0 <= trial < maps.trials:
+        raise InputError(f"trial {trial}: the map file holds trials 0..{maps.trials - 1}")
+    ekm = jax.tree.map(lambda a: a[trial], maps.ekm)
+    rec = run_scenario(world, spec.build(ekm, maps.cfg), seed=seed, config=config, on_tick=on_tick)
+    rec.map_source, rec.trial = source, int(trial)
+    return rec
