@@ -131,19 +131,37 @@ def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: st
     return _plan(world, start, goal, cell, method, t, padding, check=("start", "goal"))
 
 
-def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius) -> Plan:
+def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius, reach: float = 0.0) -> Plan:
     """Plan again from the robot's ``position`` (x, y) on the map known at ``t`` (s) (Fig. 6.5).
 
     Keeps the method, cell size and goal of ``previous``; the slippery labelling restarts from the
     robot's current cell, as it did from its initial cell (Fig. 3.3b). The robot is where it is: its
     position is not required to clear the cushion (contact or sensor noise can leave it a little inside),
-    only to lie within one cell of a free bitmap cell.
+    only to lie within one cell of a free bitmap cell — or, with ``reach`` > 0 (m), the route starts at
+    the nearest point within ``reach`` that does (a robot pressed against an obstacle just added to the
+    map stands inside its cushion).
     """
-    return _plan(world, position, previous.goal, previous.cell, previous.method, t, padding, check=("goal",))
+    return _plan(world, position, previous.goal, previous.cell, previous.method, t, padding, check=("goal",),
+                 reach=reach)
 
 
-def _plan(world, start, goal, cell, method, t, padding, check) -> Plan:
-    """:func:`plan` with the free-space test applied to the points named in ``check``."""
+def _nearest_startable(W, point, cell: float, reach: float):
+    """The point nearest ``point``, on rings of one cell up to ``reach``, that lies within one cell of a free
+    bitmap cell; ``point`` itself if it does, None if none does."""
+    x, y = point
+    for r in np.arange(0.0, reach + 1e-9, cell):
+        angles = [0.0] if r == 0 else np.linspace(0.0, 2 * math.pi, max(8, int(2 * math.pi * r / cell * 2)),
+                                                  endpoint=False)
+        for a in angles:
+            q = (x + r * math.cos(a), y + r * math.sin(a))
+            if free_cell_at(W, q, cell) is not None:
+                return q
+    return None
+
+
+def _plan(world, start, goal, cell, method, t, padding, check, reach: float = 0.0) -> Plan:
+    """:func:`plan` with the free-space test applied to the points named in ``check``, and the start moved
+    to the nearest startable point within ``reach`` (see :func:`replan`)."""
     if method not in METHODS:
         raise InputError(f"method: must be one of {', '.join(METHODS)}, got {method!r}")
     points = {"start": _point(start, "start"), "goal": _point(goal, "goal")}
@@ -153,6 +171,8 @@ def _plan(world, start, goal, cell, method, t, padding, check) -> Plan:
             raise InputError(f"{name} {_fmt(points[name])}: not in the free space of {world.name} (outside the "
                              f"arena or closer than {padding} m to a wall or known obstacle)")
     W = rasterise(obstacles, world.size, cell)
+    if reach > 0:
+        points["start"] = _nearest_startable(W, points["start"], cell, reach) or points["start"]
     return plan_bitmap(W, cell, points["start"], points["goal"], method)
 
 

@@ -77,6 +77,23 @@ def test_replanning_starts_where_the_robot_is_even_inside_the_cushion():
     assert after.start == against_wall and passes_doorway(after, 0.8, 0.40, 0.52)
 
 
+def test_replanning_with_reach_starts_at_the_nearest_free_point_when_the_robot_stands_in_a_new_cushion():
+    """Recovery adds the obstacle the robot is pressed against: its centre is then deep in the new cushion."""
+    import dataclasses
+
+    from robots.geometry import Circle
+
+    world = load_world("three-rooms-changed")
+    before = plan(world)
+    blocked = dataclasses.replace(world, obstacles=(Circle((0.6, 0.33), 0.02),))
+    robot = (0.6, 0.3)  # 1 cm from the new disc: 3.5 cm inside its 4.5 cm cushion
+    with pytest.raises(InputError, match="no free bitmap cell"):
+        replan(before, blocked, robot, t=6.0)
+    after = replan(before, blocked, robot, t=6.0, reach=0.06)
+    moved = np.hypot(after.start[0] - robot[0], after.start[1] - robot[1])
+    assert 0.0 < moved <= 0.06 and passes_doorway(after, 0.8, 0.40, 0.52)
+
+
 def test_replanning_labels_from_the_robots_new_cell():
     world = load_world("three-rooms-changed")
     after = replan(plan(world), world, (0.6, 0.3), t=6.0)
