@@ -19,8 +19,9 @@ robot's motor and sensor noise), the slippery-cell planner (:mod:`planner`) and 
    stay within 5 mm for a second. A moving goal (Samba's scenario) is reached when it comes under
    the robot's body (centre within the body radius);
 5. the trap monitor reports ``trapped`` when the robot has come no closer to its checkpoint for a set
-   time (thesis 7.1.1, cognizant failure); with ``recover``, the obstacle points the robot sensed
-   while trapped join the planner's map and the route is replanned around them.
+   time (thesis 7.1.1, cognizant failure); with ``recover``, the obstacle points the robot has sensed
+   so far that the map does not explain join the planner's map, and the route is replanned around
+   them from where the robot is.
 
 A run **reaches** the goal when the robot stops there without a single collision on the way: every
 contact of its body with anything (wall, obstacle, mover) is counted and never hidden. A run is a
@@ -53,15 +54,17 @@ class ScenarioConfig:
     settle_s: float = 1.024  # s within the goal's tolerance after which the robot counts as stopped there
     capture_radius: float | None = None  # m: a moving goal is caught within this; None = the body radius
     time_limit: float = 120.0  # s of simulated time
-    trap_after: float = 30.0  # s without progress towards the checkpoint before the monitor says trapped
+    trap_after: float = 20.0  # s without progress towards the checkpoint before the monitor says trapped
     trap_progress: float = 0.01  # m: coming this much closer than ever before counts as progress
     recover: bool = False  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
-    max_recoveries: int = 3  # traps recovered from before a run gives up
-    sensed_radius: float = 0.01  # m: an obstacle point added to the map on recovery is a disc this big
+    max_recoveries: int = 5  # traps recovered from before a run gives up
+    sensed_radius: float = 0.005  # m: an obstacle point added to the map on recovery: a disc of the IR's τ
     cell: float = DEFAULT_CELL  # m: the planner's bitmap cell
+    start_reach: float = 0.06  # m: a replan may start this far from the robot (pressed into a new cushion)
 
     def __post_init__(self):
-        for name in ("checkpoint_tolerance", "settle_s", "time_limit", "trap_after", "trap_progress", "sensed_radius", "cell"):
+        for name in ("checkpoint_tolerance", "settle_s", "time_limit", "trap_after", "trap_progress", "sensed_radius", "cell",
+                     "start_reach"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise InputError(f"scenario: {name} must be a positive number, got {value!r}")
@@ -73,11 +76,13 @@ class ScenarioConfig:
 
 @dataclass(frozen=True)
 class PlanChange:
-    """A plan the robot followed from ``t``: why it was made and its checkpoints ``(k, 2)`` (goal last)."""
+    """A plan the robot followed from ``t``: why it was made, its checkpoints ``(k, 2)`` (goal last) and, for
+    a recovery, the sensed obstacle points ``(n, 2)`` that joined the planner's map for it."""
 
     t: float
     reason: str  # "start", "event" (a known change of the map, Fig. 6.5) or "recovery" (after a trap)
     checkpoints: np.ndarray
+    added: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
 
 
 @dataclass
@@ -156,13 +161,13 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
         final = index == len(current.checkpoints) - 1
         return np.asarray(world.goal_at(t) if final else current.checkpoints[index], dtype=float)
 
-    def replan_from(t: float, reason: str) -> bool:
+    def replan_from(t: float, reason: str, added=np.zeros((0, 2))) -> bool:
         nonlocal current, index, target_id
         try:
-            current = replan(current, known, sim.pose[:2], t)
+            current = replan(current, known, sim.pose[:2], t, reach=config.start_reach)
         except InputError:  # NoRouteError included: the change left no way through
             return False
-        rec.plans.append(PlanChange(t, reason, current.checkpoints.copy()))
+        rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
         rec.replans += 1
         index, target_id = 0, target_id + 1
         monitor.reset(t)
@@ -219,12 +224,13 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
         if final and world.moving_goal:
             sub_t = t + robot.dt * np.arange(1, len(trace) + 1)
             goals = np.array([world.goal_at(s) for s in sub_t])
-            if np.any(np.linalg.norm(trace[:, :2] - goals, axis=1) < capture):
+            if np.any(caught := np.linalg.norm(trace[:, :2] - goals, axis=1) < capture):
                 rec.arrived, rec.ended = True, "caught the moving goal"
-                rec.checkpoint_log.append((sim.t, *world.goal_at(sim.t)))
+                j = int(np.argmax(caught))
+                rec.checkpoint_log.append((float(sub_t[j]), *goals[j]))
                 break
-        elif not final and np.any(np.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance):
-            rec.checkpoint_log.append((sim.t, *goal))
+        elif not final and np.any(near := np.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance):
+            rec.checkpoint_log.append((t + robot.dt * (int(np.argmax(near)) + 1), *goal))
             index, target_id = index + 1, target_id + 1
             monitor.reset(sim.t)
             continue
@@ -234,15 +240,15 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
                 rec.trapped, rec.ended = True, "trapped"
                 break
             rec.recoveries += 1
-            known = _with_sensed(known, rec.hits, sim.t - config.trap_after, config.sensed_radius)
-            if not replan_from(sim.t, "recovery"):
+            known, added = _with_sensed(known, rec.hits, config.sensed_radius)
+            if not replan_from(sim.t, "recovery", added):
                 rec.trapped, rec.ended = True, "trapped (no route around the sensed obstacle)"
                 break
     else:
         rec.ended = "time limit"
 
     rec.poses, rec.times = np.asarray(poses), np.asarray(times)
-    rec.time_s = float(rec.times[-1])
+    rec.time_s = float(rec.checkpoint_log[-1][0] if rec.arrived else rec.times[-1])
     rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
     rec.collisions = sim.collisions
     rec.checkpoints_reached = len(rec.checkpoint_log)
@@ -260,26 +266,27 @@ def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.
     return np.concatenate([pos, vel, radii[:, None]], axis=1).astype(np.float32)
 
 
-def _with_sensed(known: World, hits: list, since: float, radius: float) -> World:
-    """``known`` with the obstacle points sensed from ``since`` on that the map does not already explain
-    (further than ``radius`` from its walls and obstacles) added as small discs (thesis 7.1.1: recovery)."""
-    recent = [pts for t, pts in hits if t >= since]
-    if not recent:
-        return known
-    pts = np.unique(np.round(np.vstack(recent) / radius) * radius, axis=0)  # one disc per radius-sized cell
+def _with_sensed(known: World, hits: list, radius: float) -> tuple[World, np.ndarray]:
+    """``known`` with every obstacle point sensed so far that the map does not already explain (further than
+    ``radius`` from its walls and obstacles) added as a small disc (thesis 7.1.1: recovery), and those
+    points ``(n, 2)``."""
+    if not hits:
+        return known, np.zeros((0, 2))
+    pts = np.unique(np.round(np.vstack([p for _, p in hits]) / radius) * radius, axis=0)  # one disc per cell
     w, h = known.size
     pts = pts[(pts[:, 0] > 0) & (pts[:, 0] < w) & (pts[:, 1] > 0) & (pts[:, 1] < h)]
     new = pts[known.clearance(pts, known_only=True) > radius] if len(pts) else pts
     discs = tuple(Circle((float(x), float(y)), radius) for x, y in new)
-    return replace(known, obstacles=known.obstacles + discs)
+    return replace(known, obstacles=known.obstacles + discs), new
 
 
 def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int | None = None,
-                     config: ScenarioConfig = ScenarioConfig(), on_tick=None) -> RunRecord:
+                     config: ScenarioConfig = ScenarioConfig(), on_tick=None, source: str = "given map") -> RunRecord:
     """Run the architecture ``spec`` (:class:`robots.controllers.spec.ArchitectureSpec`) through ``world``.
 
     ``maps``: a :class:`ekm.mapfile.SavedMaps` (``ekm train``'s file), or None for the shipped map of the
-    architecture's chart (:mod:`ekm.data`). ``trial``: which of its trials drives; by default
+    architecture's chart (:mod:`ekm.data`); ``source`` names a given one in the record. ``trial``: which of
+    its trials drives; by default
     ``seed % trials``, so that seeds 0–9 run every trained map of a 5-trial file twice, each time with
     other noise.
     """
@@ -289,8 +296,6 @@ def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int
         from ekm.data import load_default_map
 
         maps, source = load_default_map(spec.default_chart), f"shipped {spec.default_chart}-chart map"
-    else:
-        source = str(maps.meta.get("source", "")) or "given map"
     if trial is None:
         trial = seed % maps.trials
     if not 0 <= trial < maps.trials:

@@ -11,15 +11,10 @@ the 12 long-range sensors:
   0°, ±30°, ±60° ones of the long-range ring) drives the opposite motor with ``-cross`` and its own side's
   motor with ``+same``. A sensor straight ahead (φ = 0) belongs to both sides and splits both weights
   evenly, so an obstacle dead ahead only brakes — the symmetric case the thesis's trap figures show;
-- a *backward-facing* sensor (|φ| ≥ 180° − ``front``) is the mirror image: ``+cross`` to the opposite
-  motor and ``-same`` to its own. The thesis's maps only drive forward; the signed chart's maps
-  (:mod:`ekm.charts`, the default) reverse onto targets behind, and a robot that backs into an
-  obstacle must be pushed off it as one that drives into it is. Mirrored, an obstacle behind-left
-  makes the right motor run forward faster than the left runs backward: the robot pulls away and its
-  back swings right, away from the obstacle. (Eq. 4.10 stays one constant Z.)
-- every other sensor (the sides) drives its own side's motor with ``+same`` and the opposite motor with
-  ``+same/2``: an obstacle beside the robot speeds it up and steers it gently away ("the robot detected
-  a wall on its right and deviated slightly to the left", ch. 6.2.1).
+- every other sensor (the sides, the back) drives its own side's motor with ``+same`` and the opposite
+  motor with ``+same/2``: an obstacle beside or behind the robot speeds it up and steers it gently away
+  ("the robot detected a wall on its right and deviated slightly to the left", ch. 6.2.1). A sensor
+  straight behind splits its weights evenly, like one straight ahead.
 
 So an obstacle ahead-left makes the right motor run backward faster than the left runs forward and the
 robot turns right, away from it (ch. 4.4). The gains are in m/s at full activation; command fusion
@@ -41,8 +36,7 @@ FRONT = math.radians(60.0)
 
 def z_matrix(sensors: SensorSet, cross: float, same: float, front: float = FRONT) -> np.ndarray:
     """Z ``(2, m)`` of Eq. 4.10 for ``sensors`` (see the module docstring): ``-cross`` from each forward-facing
-    sensor to the opposite motor and ``+same`` to its own; mirrored for backward-facing sensors; small
-    positive weights from the side sensors."""
+    sensor to the opposite motor and ``+same`` to its own; small positive weights from the others."""
     if not (cross >= 0 and same >= 0):
         raise ValueError(f"Braitenberg gains must be >= 0, got cross={cross}, same={same}")
     z = np.zeros((2, len(sensors.angles)), dtype=np.float32)
@@ -50,12 +44,7 @@ def z_matrix(sensors: SensorSet, cross: float, same: float, front: float = FRONT
         phi = math.remainder(phi, 2.0 * math.pi)
         # How much of the sensor is on the left: 1 left, 0 right, 1/2 straight ahead or straight behind.
         left = 0.5 if min(abs(phi), math.pi - abs(phi)) < 1e-9 else (1.0 if phi > 0 else 0.0)
-        if abs(phi) <= front + 1e-9:
-            own, opposite = same, -cross
-        elif abs(phi) >= math.pi - front - 1e-9:
-            own, opposite = -same, cross
-        else:
-            own, opposite = same, 0.5 * same
+        own, opposite = (same, -cross) if abs(phi) <= front + 1e-9 else (same, 0.5 * same)
         z[0, j] = left * own + (1.0 - left) * opposite  # left motor
         z[1, j] = (1.0 - left) * own + left * opposite  # right motor
     return z

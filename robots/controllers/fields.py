@@ -88,7 +88,7 @@ class FieldParams:
         "choices": FORMS})
     gamma_alpha: float = field(default=0.1, metadata={"help": "γ_α of the target field (Eq. 5.3), map units"})
     gamma_d: float = field(default=1.0, metadata={"help": "γ_d of the target field (Eq. 5.3), map units"})
-    sigma_a: float = field(default=0.5, metadata={"help": "σ_a of the target field (Eq. 5.3)"})
+    sigma_a: float = field(default=0.3, metadata={"help": "σ_a of the target field (Eq. 5.3)"})
     delta_alpha: float = field(default=1.0, metadata={"help": "δ_α of the obstacle field (Eq. 5.6), map units; "
                                                               "form=thesis"})
     sigma_b: float = field(default=0.15, metadata={"help": "σ_b of the obstacle field (Eq. 5.6)"})
