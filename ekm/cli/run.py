@@ -1,0 +1,96 @@
+"""``ekm run``: drive the robot through a world with one architecture (thesis ch. 6.2; DESIGN §5, §6)."""
+
+from __future__ import annotations
+
+from ekm.cli.args import nonneg_int, output_path, positive_float, print_json, show_progress
+
+ARCHITECTURE_HELP = ("ARCH[:k=v,...], e.g. fields, fields:form=thesis, fusion:beta=0.6,sensors=long; "
+                     "without parameters each runs its best documented variant")
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("run", help="drive the robot through a world: planner + architecture, one seed")
+    p.add_argument("--world", required=True, metavar="W", help="named world or world file")
+    p.add_argument("--architecture", required=True, metavar="ARCH", help=ARCHITECTURE_HELP)
+    p.add_argument("--sensors", choices=("short", "long"),
+                   help="IR ring, overriding the architecture's (short: 8 Khepera sensors, 5 cm; long: 12, 17.5 cm)")
+    p.add_argument("--recover", action="store_true",
+                   help="when trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1)")
+    p.add_argument("--map", metavar="MAP.npz", help="indirect map from ekm train (default: the shipped map)")
+    p.add_argument("--trial", type=nonneg_int, metavar="K", help="which trial of the map drives (default: seed %% trials)")
+    p.add_argument("--seed", type=nonneg_int, default=0, help="noise seed of the run (default 0)")
+    p.add_argument("--time-limit", type=positive_float, default=120.0, metavar="S",
+                   help="simulated seconds before the run is given up (default 120)")
+    p.add_argument("--plot", metavar="PNG", help="draw the run to scale (Fig. 6.3-6.8)")
+    p.add_argument("--gif", metavar="GIF", help="animate the run")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=run)
+
+
+def resolve(args):
+    """World, architecture spec, maps, their source and the scenario config from the arguments — every check
+    before any run."""
+    from ekm.data import load_default_map
+    from ekm.errors import InputError
+    from ekm.mapfile import load_maps
+    from evaluation.scenario import ScenarioConfig
+    from robots.controllers.spec import parse_architecture
+    from robots.worldfile import load_world
+
+    world = load_world(args.world)
+    spec = parse_architecture(args.architecture)
+    if args.sensors:
+        spec = spec.with_params(sensors=args.sensors)
+    if args.map:
+        maps, source = load_maps(args.map), args.map
+    else:
+        maps, source = load_default_map(spec.default_chart), f"shipped {spec.default_chart}-chart map"
+    if args.trial is not None and args.trial >= maps.trials:
+        raise InputError(f"--trial {args.trial}: the map file holds trials 0..{maps.trials - 1}")
+    config = ScenarioConfig(time_limit=args.time_limit, recover=args.recover)
+    return world, spec, maps, source, config
+
+
+def run(args) -> None:
+    """Drive the robot through a world with one architecture and report the outcome (DESIGN §6)."""
+    from evaluation.scenario import run_architecture
+
+    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
+    world, spec, maps, source, config = resolve(args)
+    bar, on_tick = None, None
+    if show_progress(args):
+        from tqdm import tqdm
+
+        bar = tqdm(total=round(config.time_limit, 1), unit="sim s", desc=f"{spec.label} in {world.name}",
+                   dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}]")
+
+        def on_tick(t):
+            bar.update(round(t, 3) - bar.n)
+
+    try:
+        rec = run_architecture(world, spec, maps, seed=args.seed, trial=args.trial, config=config, on_tick=on_tick,
+                               source=source)
+    finally:
+        if bar is not None:
+            bar.close()
+    if plot:
+        from evaluation.scenario_plot import save_run
+
+        save_run(rec, plot)
+    if gif:
+        from evaluation.scenario_plot import save_animation
+
+        save_animation(rec, gif)
+    out = rec.outcome()
+    if args.json:
+        print_json(out)
+        return
+    status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
+    print(f"{world.name}: {spec} (seed {args.seed}, {out['map']}, trial {out['trial']})")
+    print(f"  {status}: {out['ended']} after {out['time_s']:.1f} s, path {out['path_m']:.2f} m, "
+          f"{out['collisions']} collisions, final distance {1000 * out['final_distance_m']:.1f} mm")
+    print(f"  checkpoints reached {out['checkpoints_reached']}, replans {out['replans']}, recoveries {out['recoveries']}")
+    for path in (plot, gif):
+        if path:
+            print(f"  written to {path}")

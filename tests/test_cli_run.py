@@ -1,0 +1,108 @@
+"""``ekm run``: the outcome as JSON, the text report, and one-line errors with exit status 2."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from ekm.cli import main
+
+
+def run(capsys, *argv):
+    status = main(["run", *argv])
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def test_run_prints_the_outcome_record_as_json(capsys):
+    status, out, err = run(capsys, "--world", "three-rooms-static", "--architecture", "fields", "--json")
+    assert status == 0 and err == ""
+    rec = json.loads(out)
+    assert list(rec)[:10] == ["world", "architecture", "reached", "time_s", "path_m", "collisions",
+                              "checkpoints_reached", "replans", "trapped", "final_distance_m"]
+    assert rec["world"] == "three-rooms-static" and rec["architecture"].startswith("fields:sensors=long,form=extended")
+    assert rec["reached"] and rec["collisions"] == 0 and rec["checkpoints_reached"] == 3
+    assert rec["map"] == "shipped signed-chart map" and rec["trial"] == 0 and rec["seed"] == 0
+
+
+def test_sensors_and_parameters_reach_the_architecture_and_the_text_report(capsys):
+    status, out, _ = run(capsys, "--world", "open-arena", "--architecture", "fusion:beta=0.9", "--sensors", "long",
+                         "--seed", "3", "--time-limit", "20")
+    assert status == 0
+    assert "fusion:sensors=long,beta=0.9," in out and "seed 3" in out and "trial 3" in out
+    assert "REACHED the goal" in out
+
+
+def test_a_given_map_and_trial_drive_the_run(capsys, tmp_path):
+    from ekm.data import default_map
+
+    path = tmp_path / "m.npz"
+    path.write_bytes(default_map("signed").read_bytes())
+    status, out, _ = run(capsys, "--world", "open-arena", "--architecture", "fields", "--map", str(path), "--trial", "4",
+                         "--json")
+    rec = json.loads(out)
+    assert status == 0 and rec["map"] == str(path) and rec["trial"] == 4 and rec["reached"]
+
+
+def test_plot_and_gif_are_written(capsys, tmp_path):
+    png, gif = tmp_path / "run.png", tmp_path / "run.gif"
+    status, out, _ = run(capsys, "--world", "three-rooms-moving", "--architecture", "fusion", "--time-limit", "3",
+                         "--plot", str(png), "--gif", str(gif))
+    assert status == 0 and png.stat().st_size > 10_000 and gif.stat().st_size > 10_000
+    assert f"written to {png}" in out
+
+
+def bad_world(tmp_path, name, doc):
+    path = tmp_path / f"{name}.json"
+    path.write_text(json.dumps(doc))
+    return str(path)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--world", "nowhere", "--architecture", "fields"], "nowhere: no such world file or named world"),
+    (["--world", "open-arena", "--architecture", "samba-ish"], "architecture 'samba-ish': unknown"),
+    (["--world", "open-arena", "--architecture", "fields:form=best"], "fields: form: must be one of extended, thesis"),
+    (["--world", "open-arena", "--architecture", "fusion:gain=2"], "fusion: unknown parameter 'gain'"),
+    (["--world", "open-arena", "--architecture", "fields", "--map", "README.md"], "README.md: not a map file"),
+    (["--world", "open-arena", "--architecture", "fields", "--map", "missing.npz"], "missing.npz: no such map file"),
+    (["--world", "open-arena", "--architecture", "fields", "--trial", "7"], "--trial 7: the map file holds trials 0..4"),
+    (["--world", "open-arena", "--architecture", "fields", "--seed", "-1"], "--seed: must be >= 0"),
+    (["--world", "open-arena", "--architecture", "fields", "--time-limit", "nan"], "--time-limit: must be finite"),
+    (["--world", "open-arena", "--architecture", "fields", "--plot", "run.jpg"], "--plot run.jpg: expected a file name ending in .png"),
+    (["--world", "open-arena", "--architecture", "fields", "--sensors", "mid"], "--sensors: invalid choice: 'mid'"),
+])
+def test_bad_arguments_are_one_line_errors(capsys, argv, message):
+    status, out, err = run(capsys, *argv)
+    assert status == 2 and out == ""
+    assert err.startswith("error: ") and message in err and err.count("\n") == 1
+
+
+def test_a_world_the_planner_cannot_route_through_is_one_line(capsys, tmp_path):
+    walled = bad_world(tmp_path, "walled", {"name": "walled", "size": [1.0, 0.5], "walls": [[0.5, 0.0, 0.5, 0.5]],
+                                            "start": [0.2, 0.25, 0.0], "goal": [0.8, 0.25]})
+    status, _, err = run(capsys, "--world", walled, "--architecture", "fusion")
+    assert status == 2 and "no route from start (0.2, 0.25) to goal (0.8, 0.25)" in err and err.count("\n") == 1
+
+
+def test_a_start_inside_an_obstacle_is_one_line(capsys, tmp_path):
+    inside = bad_world(tmp_path, "inside", {"name": "inside", "size": [1.0, 1.0], "start": [0.5, 0.5, 0.0],
+                                            "goal": [0.8, 0.8],
+                                            "obstacles": [{"type": "box", "center": [0.5, 0.5], "size": [0.1, 0.1]}]})
+    status, _, err = run(capsys, "--world", inside, "--architecture", "fields")
+    assert status == 2 and "start: the robot (radius 0.025 m) at [0.5, 0.5] overlaps a wall or obstacle" in err
+    assert err.count("\n") == 1
+
+
+def test_no_file_is_left_behind_when_the_run_fails(capsys, tmp_path):
+    png = tmp_path / "out.png"
+    status, _, _ = run(capsys, "--world", "open-arena", "--architecture", "fields", "--map", "missing.npz",
+                       "--plot", str(png))
+    assert status == 2 and not png.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_python_m_ekm_cli_run_exits_2_without_a_traceback():
+    proc = subprocess.run([sys.executable, "-m", "ekm.cli", "run", "--world", "open-arena", "--architecture", "x"],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
