@@ -1,0 +1,166 @@
+"""The scenario runner: checkpoints, the stop at the goal, collisions, events and replanning, traps and recovery."""
+
+import json
+
+import numpy as np
+import pytest
+
+from ekm.errors import InputError
+from evaluation.monitor import TrapMonitor
+from evaluation.scenario import ScenarioConfig, _with_sensed, run_architecture, run_scenario
+from robots.controllers.base import Controller
+from robots.controllers.spec import parse_architecture
+from robots.kinematics import egocentric
+from robots.params import KHEPERA
+from robots.worldfile import load_world, parse_world
+
+OUTCOME_KEYS = ["world", "architecture", "reached", "time_s", "path_m", "collisions", "checkpoints_reached",
+                "replans", "trapped", "final_distance_m"]
+
+
+def constant(command, name="constant"):
+    """A controller that always sends ``command`` (the runner never asks what it runs)."""
+    return Controller(name=name, spec=name, sensors=KHEPERA.short_range, init=lambda: 0,
+                      step=lambda state, obs: (state, np.asarray(command, float)))
+
+
+def steering(gain=1.0):
+    """An analytic reference: turn towards the checkpoint and slow down near it (no obstacle avoidance)."""
+
+    def step(state, obs):
+        alpha, d = float(obs.target[0]), float(obs.target[1])
+        v = min(0.12, 1.5 * d) * max(0.0, np.cos(alpha))
+        w = 2.0 * alpha
+        return state, np.array([v - w * KHEPERA.wheel_base / 2, v + w * KHEPERA.wheel_base / 2]) * gain
+
+    return Controller(name="steer", spec="steer", sensors=KHEPERA.short_range, init=lambda: 0, step=step)
+
+
+def test_an_open_arena_run_stops_at_the_goal_with_the_outcome_record_of_design_6():
+    world = load_world("open-arena")
+    rec = run_scenario(world, steering(), seed=0)
+    out = rec.outcome()
+    assert list(out)[:len(OUTCOME_KEYS)] == OUTCOME_KEYS
+    assert out["reached"] and out["arrived"] and out["collisions"] == 0 and not out["trapped"]
+    assert out["final_distance_m"] < 0.005 and out["checkpoints_reached"] == 1 and out["replans"] == 0
+    straight = np.hypot(0.3, 0.3)
+    assert straight <= out["path_m"] < 1.3 * straight
+    # time_s is when the stop was sent at the goal; one more period lets the wheels spin down
+    assert out["time_s"] == pytest.approx(rec.times[-1] - KHEPERA.avoid_period) and 2.0 < out["time_s"] < 20.0
+    json.dumps(out, allow_nan=False)
+
+
+def test_a_run_is_a_pure_function_of_its_seed():
+    world = load_world("three-rooms-moving")
+    spec = parse_architecture("fusion")
+    config = ScenarioConfig(time_limit=8.0)
+    a, b = (run_architecture(world, spec, seed=3, config=config) for _ in range(2))
+    assert a.outcome() == b.outcome()
+    np.testing.assert_array_equal(a.poses, b.poses)
+    c = run_architecture(world, spec, seed=4, config=config)
+    assert not np.array_equal(a.poses[:len(c.poses)], c.poses[:len(a.poses)])
+
+
+def test_driving_into_a_wall_is_counted_as_collisions_and_never_reaches():
+    world = parse_world({"name": "box", "size": [0.5, 0.5], "start": [0.25, 0.25, 0.0], "goal": [0.1, 0.25]})
+    rec = run_scenario(world, constant([0.12, 0.12]), seed=0, config=ScenarioConfig(time_limit=4.0, trap_after=3.0))
+    assert rec.collisions >= 1 and len(rec.collision_log) == rec.collisions
+    assert not rec.reached and rec.poses[:, 0].max() <= 0.5 - 0.005 - KHEPERA.radius + 0.003  # the wall holds
+
+
+def test_a_robot_that_makes_no_progress_is_reported_trapped_after_the_set_time():
+    world = load_world("open-arena")
+    rec = run_scenario(world, constant([0.0, 0.0]), seed=0, config=ScenarioConfig(trap_after=5.0))
+    assert rec.trapped and rec.ended == "trapped" and not rec.reached
+    assert 5.0 <= rec.time_s <= 5.0 + 2 * KHEPERA.avoid_period + 1e-9  # measured from the first tick's reading
+    assert rec.trap_log and rec.trap_log[0][0] == pytest.approx(rec.time_s)
+
+
+def test_the_trap_monitor_resets_on_progress_and_on_a_new_checkpoint():
+    m = TrapMonitor(after=2.0, progress=0.01)
+    assert not m.update(0.0, 1.0)
+    assert not m.update(1.9, 0.995)  # less than 1 cm closer: no progress yet
+    assert m.update(2.0, 0.995)
+    m.reset(2.0)
+    assert not m.update(3.0, 0.9) and not m.update(4.5, 0.89) and m.update(5.0, 0.895)
+
+
+def test_a_known_event_changes_the_map_and_triggers_exactly_one_replan():
+    """Fig. 6.5: the lower doorway of three-rooms-changed closes at 6 s; the planner replans through the upper."""
+    world = load_world("three-rooms-changed")
+    rec = run_architecture(world, parse_architecture("fields"), seed=0, config=ScenarioConfig(time_limit=9.0))
+    assert rec.replans == 1 and [p.reason for p in rec.plans] == ["start", "event"]
+    event_time = world.events[0].at_s
+    assert event_time <= rec.plans[1].t < event_time + 0.13  # at the first tick after the event
+    old, new = rec.plans[0].checkpoints, rec.plans[1].checkpoints
+    assert old[-2][1] < 0.22 < new[-2][1]  # the checkpoint before the goal moved to the upper doorway
+    np.testing.assert_allclose(new[-1], world.goal)
+
+
+def test_an_unknown_event_changes_the_world_but_not_the_plan():
+    doc = {"name": "told-or-not", "size": [1.0, 0.6], "start": [0.1, 0.3, 0.0], "goal": [0.9, 0.3],
+           "events": [{"at_s": 1.0, "add": [{"type": "box", "center": [0.5, 0.05], "size": [0.05, 0.05]}],
+                       "known": False}]}
+    rec = run_scenario(parse_world(doc), steering(), seed=0, config=ScenarioConfig(time_limit=4.0))
+    assert rec.replans == 0
+
+
+def test_checkpoints_count_within_5_mm_on_the_sub_steps():
+    world = load_world("three-rooms")
+    rec = run_scenario(world, steering(), seed=1)
+    cps = rec.plans[0].checkpoints
+    assert rec.checkpoints_reached == len(cps)
+    for (t, x, y), cp in zip(rec.checkpoint_log[:-1], cps[:-1]):  # the first passage, on the 16 ms sub-steps
+        i = int(np.searchsorted(rec.times, t - 1e-9))
+        assert rec.times[i] == pytest.approx(t)
+        assert np.linalg.norm(rec.poses[i, :2] - cp) < 0.005
+        assert np.all(np.linalg.norm(rec.poses[:i, :2] - cp, axis=1) >= 0.005)
+
+
+def test_a_moving_goal_is_caught_under_the_robots_body():
+    world = load_world("moving-target")
+    rec = run_scenario(world, steering(), seed=0)
+    assert rec.reached and rec.ended == "caught the moving goal"
+    t = rec.times[-1]
+    assert np.linalg.norm(rec.poses[-1, :2] - np.asarray(world.goal_at(t))) < KHEPERA.radius + 0.005
+
+
+def test_recovery_adds_the_sensed_obstacle_to_the_map_and_replans():
+    world = load_world("extended-obstacle")
+    rec = run_architecture(world, parse_architecture("fusion"), seed=0,
+                           config=ScenarioConfig(recover=True, trap_after=10.0, time_limit=40.0))
+    assert rec.recoveries >= 1 and "recovery" in [p.reason for p in rec.plans]
+    first = next(p for p in rec.plans if p.reason == "recovery")
+    assert len(first.checkpoints) > 1  # a detour round the wall the planner did not know about
+    assert len(first.added) > 0 and np.all(np.abs(first.added[:, 0] - 0.6) < 0.03)  # points of that wall
+
+
+def test_sensed_points_on_known_walls_are_not_added_again():
+    world = load_world("three-rooms")
+    on_wall = np.array([[0.4, 0.1], [0.4, 0.5]])
+    new = np.array([[0.6, 0.3]])
+    grown, added = _with_sensed(world, [(0.0, on_wall), (1.0, new)], 0.01)
+    assert len(grown.obstacles) == len(world.obstacles) + 1
+    np.testing.assert_allclose(added, [[0.6, 0.3]])
+    assert grown.obstacles[-1].center == pytest.approx((0.6, 0.3))
+
+
+def test_a_world_the_planner_cannot_route_through_is_an_input_error():
+    doc = {"name": "walled-off", "size": [1.0, 0.5], "walls": [[0.5, 0.0, 0.5, 0.5]], "start": [0.2, 0.25, 0.0],
+           "goal": [0.8, 0.25]}
+    with pytest.raises(InputError, match="no route"):
+        run_scenario(parse_world(doc), steering(), seed=0)
+
+
+def test_egocentric_target_is_what_the_controller_sees():
+    seen = []
+
+    def step(state, obs):
+        seen.append((np.asarray(obs.pose, float), np.asarray(obs.target, float)))
+        return state, np.zeros(2)
+
+    ctl = Controller(name="look", spec="look", sensors=KHEPERA.long_range, init=lambda: 0, step=step)
+    world = load_world("open-arena")
+    run_scenario(world, ctl, seed=0, config=ScenarioConfig(time_limit=0.5))
+    pose, target = seen[0]
+    np.testing.assert_allclose(target, egocentric(pose, np.asarray(world.goal)), rtol=1e-5)
