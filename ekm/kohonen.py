@@ -16,6 +16,13 @@ def wrap(a):
     return jnp.pi - jnp.mod(jnp.pi - a, 2.0 * jnp.pi)
 
 
+def wrap_near(a):
+    """``a`` wrapped to [-π, π] by rounding — equal to :func:`wrap` except that -π may stay -π. For angle
+    differences that are then squared or taken in absolute value, where that sign does not matter; on the
+    CPU it costs a quarter of :func:`wrap`'s ``mod`` (the neural fields evaluate it K × N² times a tick)."""
+    return a - 2.0 * jnp.pi * jnp.round(a / (2.0 * jnp.pi))
+
+
 def initial_weights(cfg: EKMConfig):
     """Input weights w_i = (α_i, d_i) ``(N², 2)`` on a regular grid over the sensory space (ch. 6.1).
 

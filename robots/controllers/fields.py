@@ -65,7 +65,7 @@ import jax.numpy as jnp
 
 from ekm import indirect
 from ekm.config import EKMConfig
-from ekm.kohonen import relative, winner, wrap
+from ekm.kohonen import relative, winner, wrap, wrap_near
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles
 from robots.params import KHEPERA, RobotParams
@@ -122,11 +122,11 @@ def target_field(w, s, p: FieldParams, cfg: EKMConfig):
 
 def delta_d(d_s, d_i, tau: float):
     """δ_d(d_s, d_i) of Eq. 5.6 (distances in m): 1 − (d_i − d_s)^0.01 beyond the obstacle, 1 + ((d_s − d_i)/τ)⁴
-    before it."""
+    before it (and 1 at it)."""
     gap = d_i - d_s
-    beyond = gap >= 0
-    stretch = 1.0 - jnp.where(gap > 0, gap, 1.0) ** 0.01 * (gap > 0)
-    return jnp.where(beyond, stretch, 1.0 + (-gap / tau) ** 4)
+    stretch = 1.0 - jnp.exp(0.01 * jnp.log(jnp.maximum(gap, 1e-30)))  # gap ** 0.01, without pow's checks
+    before = jnp.square(jnp.square(gap / tau))
+    return jnp.where(gap > 0, stretch, 1.0 + before)
 
 
 def obstacle_field(w, winners, seen, p: FieldParams, cfg: EKMConfig):
@@ -143,10 +143,11 @@ def body_field(w, u_obs, valid, radius: float, p: FieldParams, cfg: EKMConfig):
     """b_i ``(N²,)`` of obstacles placed where they are (``form=extended``): Eq. 5.6's stretched Gaussian
     centred on each obstacle's own (α_j, d_j), with δ_α scaled so that its angular half-width (where
     G_b = e⁻¹) is the angle the robot's body subtends there (:func:`memory.cone_half_width`)."""
-    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=p.clearance) / jnp.pi  # map units
-    diff = relative(u_obs[:, None, :], w[None, :, :], cfg)  # (h, N², 2), u_j - w_i in map units
+    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=p.clearance)  # rad
+    d_alpha = wrap_near(u_obs[:, None, 0] - w[None, :, 0])  # (h, N²)
+    d_d = (u_obs[:, None, 1] - w[None, :, 1]) / cfg.d_scale  # map units
     dd = delta_d(u_obs[:, None, 1], w[None, :, 1], p.tau)
-    g = jnp.exp(-(diff[..., 0] / half[:, None]) ** 2 - dd * diff[..., 1] ** 2 / p.sigma_b**2)
+    g = jnp.exp(-jnp.square(d_alpha / half[:, None]) - dd * jnp.square(d_d) / p.sigma_b**2)
     return jnp.sum(jnp.where(valid[:, None], g, 0.0), axis=0)
 
 

@@ -19,7 +19,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from ekm.kohonen import wrap
+from ekm.kohonen import wrap, wrap_near
 from robots.controllers.base import hit_points
 
 
@@ -90,5 +90,5 @@ def blocked_along(directions, reach, u_obs, valid, *, radius: float, clearance: 
     """For each direction ``(n,)`` (rad, robot frame): does an obstacle of ``u_obs`` ``(K, 2)`` (where ``valid``)
     lie in the body-wide cone along it, nearer than ``reach`` (m)?"""
     half = cone_half_width(u_obs[:, 1], radius=radius, clearance=clearance)
-    off = jnp.abs(wrap(directions[:, None] - u_obs[None, :, 0]))
+    off = jnp.abs(wrap_near(directions[:, None] - u_obs[None, :, 0]))
     return jnp.any(valid[None, :] & (u_obs[None, :, 1] < reach) & (off < half[None, :]), axis=1)
