@@ -92,8 +92,8 @@ class RunRecord:
     world: World
     architecture: str
     seed: int
-    map_source: str = ""
-    trial: int = 0
+    map_source: str = ""  # which map drove ("" for an architecture that drives none)
+    trial: int | None = 0
     reached: bool = False
     arrived: bool = False
     time_s: float = 0.0
@@ -123,8 +123,8 @@ class RunRecord:
                 "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
                 "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,
                 "final_distance_m": round(self.final_distance_m, 5), "arrived": self.arrived,
-                "recoveries": self.recoveries, "ended": self.ended, "seed": self.seed, "map": self.map_source,
-                "trial": self.trial}
+                "recoveries": self.recoveries, "ended": self.ended, "seed": self.seed,
+                "map": self.map_source or None, "trial": self.trial}
 
 
 def mover_radius(shape) -> float:
@@ -292,6 +292,12 @@ def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int
     """
     import jax
 
+    if not spec.uses_map:  # Samba, motor schemas: no EKM to drive
+        if maps is not None or trial is not None:
+            raise InputError(f"architecture {spec.name} drives no map: drop the map and trial")
+        rec = run_scenario(world, spec.build(), seed=seed, config=config, on_tick=on_tick)
+        rec.map_source, rec.trial = "", None
+        return rec
     if maps is None:
         from ekm.data import load_default_map
 

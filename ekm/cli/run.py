@@ -33,7 +33,6 @@ def resolve(args):
     from ekm.data import load_default_map
     from ekm.errors import InputError
     from ekm.mapfile import load_maps
-    from evaluation.scenario import ScenarioConfig
     from robots.controllers.spec import parse_architecture
     from robots.worldfile import load_world
 
@@ -41,14 +40,24 @@ def resolve(args):
     spec = parse_architecture(args.architecture)
     if args.sensors:
         spec = spec.with_params(sensors=args.sensors)
+    if not spec.uses_map:
+        if args.map or args.trial is not None:
+            raise InputError(f"--map/--trial: architecture {spec.name} drives no map")
+        return world, spec, None, "", config_from(args)
     if args.map:
         maps, source = load_maps(args.map), args.map
     else:
         maps, source = load_default_map(spec.default_chart), f"shipped {spec.default_chart}-chart map"
     if args.trial is not None and args.trial >= maps.trials:
         raise InputError(f"--trial {args.trial}: the map file holds trials 0..{maps.trials - 1}")
-    config = ScenarioConfig(time_limit=args.time_limit, recover=args.recover)
-    return world, spec, maps, source, config
+    return world, spec, maps, source, config_from(args)
+
+
+def config_from(args):
+    """The :class:`~evaluation.scenario.ScenarioConfig` of the arguments."""
+    from evaluation.scenario import ScenarioConfig
+
+    return ScenarioConfig(time_limit=args.time_limit, recover=args.recover)
 
 
 def run(args) -> None:
@@ -69,8 +78,8 @@ def run(args) -> None:
             bar.update(round(t, 3) - bar.n)
 
     try:
-        rec = run_architecture(world, spec, maps, seed=args.seed, trial=args.trial, config=config, on_tick=on_tick,
-                               source=source)
+        rec = run_architecture(world, spec, maps, seed=args.seed, trial=args.trial if spec.uses_map else None,
+                               config=config, on_tick=on_tick, source=source)
     finally:
         if bar is not None:
             bar.close()
@@ -87,7 +96,8 @@ def run(args) -> None:
         print_json(out)
         return
     status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
-    print(f"{world.name}: {spec} (seed {args.seed}, {out['map']}, trial {out['trial']})")
+    drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
+    print(f"{world.name}: {spec} (seed {args.seed}{drives})")
     print(f"  {status}: {out['ended']} after {out['time_s']:.1f} s, path {out['path_m']:.2f} m, "
           f"{out['collisions']} collisions, final distance {1000 * out['final_distance_m']:.1f} mm")
     print(f"  checkpoints reached {out['checkpoints_reached']}, replans {out['replans']}, recoveries {out['recoveries']}")

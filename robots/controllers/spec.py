@@ -22,13 +22,14 @@ from robots.controllers import fusion
 @dataclass(frozen=True)
 class Architecture:
     """A named architecture: its parameter class, its builder, a one-line summary and the chart of the
-    shipped map it drives when no map is given (:mod:`ekm.data`)."""
+    shipped map it drives when no map is given (:mod:`ekm.data`) — None for an architecture that drives
+    no EKM (its ``build`` then gets ``ekm=None, cfg=None``)."""
 
     name: str
     params: type
     build: Callable[..., Any]
     summary: str
-    default_chart: str
+    default_chart: str | None
 
 
 ARCHITECTURES: dict[str, Architecture] = {
@@ -66,14 +67,21 @@ class ArchitectureSpec:
             raise InputError(f"architecture {self.name}: {exc}") from None
 
     @property
-    def default_chart(self) -> str:
-        """The chart of the shipped map this architecture drives when no map is given."""
+    def default_chart(self) -> str | None:
+        """The chart of the shipped map this architecture drives when no map is given (None: it needs none)."""
         return ARCHITECTURES[self.name].default_chart
 
-    def build(self, ekm, cfg, robot=None):
-        """The ready :class:`~robots.controllers.base.Controller` for one trial's indirect map ``ekm``."""
-        if cfg.mapping != "indirect":
-            raise InputError(f"architecture {self.name}: needs an indirect map (Eq. 4.5), got a {cfg.mapping} map")
+    @property
+    def uses_map(self) -> bool:
+        """Whether this architecture drives an EKM (command fusion and neural fields do)."""
+        return self.default_chart is not None
+
+    def build(self, ekm=None, cfg=None, robot=None):
+        """The ready :class:`~robots.controllers.base.Controller` for one trial's indirect map ``ekm`` (None for
+        an architecture that drives no map)."""
+        if self.uses_map and (cfg is None or cfg.mapping != "indirect"):
+            got = "no map" if cfg is None else f"a {cfg.mapping} map"
+            raise InputError(f"architecture {self.name}: needs an indirect map (Eq. 4.5), got {got}")
         arch = ARCHITECTURES[self.name]
         kwargs = {} if robot is None else {"robot": robot}
         return arch.build(self.params, ekm, cfg, spec=str(self), **kwargs)
