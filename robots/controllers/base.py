@@ -82,3 +82,23 @@ def hit_points(pose, readings, angles, radius: float = KHEPERA.radius, xp=np):
     reach = radius + xp.where(seen, r, 0.0)
     pts = xp.stack([pose[0] + reach * xp.cos(phi), pose[1] + reach * xp.sin(phi)], axis=-1)
     return pts, seen
+
+
+def velocity_to_wheels(direction, speed, robot: RobotParams = KHEPERA, turn_gain: float = 4.0):
+    """Wheel speeds ``(2,)`` that carry the differential-drive robot along a desired velocity (``direction``
+    rad in the robot frame, + = left; ``speed`` m/s) — how Samba's and the motor schemas' holonomic velocity
+    commands reach a nonholonomic robot.
+
+    The robot turns towards the direction at ``turn_gain`` × the heading error (rad/s) while driving
+    forward at the velocity's component along its heading, ``speed · cos(direction)``, and not at all
+    when that is negative: it cannot move sideways, so it turns on the spot first (a half turn takes
+    about 0.5 s at full wheel speed). When a wheel would exceed c*, both are scaled down together, so the
+    turn keeps its share. What a holonomic robot (Riekki's soccer players) does at once — step sideways,
+    back away while facing the obstacle — this robot does by turning first.
+    """
+    direction = jnp.asarray(direction)
+    v = jnp.asarray(speed) * jnp.maximum(jnp.cos(direction), 0.0)
+    omega = turn_gain * direction
+    wheels = jnp.stack([v - 0.5 * robot.wheel_base * omega, v + 0.5 * robot.wheel_base * omega])
+    peak = jnp.max(jnp.abs(wheels))
+    return wheels * jnp.minimum(1.0, robot.max_wheel_speed / jnp.maximum(peak, 1e-12))
