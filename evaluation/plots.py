@@ -88,7 +88,9 @@ def paths_figure(results: list[dict], arena, *, shown: int = 10) -> Figure:
             ax.annotate(str(i + 1), targets[i], textcoords="offset points", xytext=(4, 4), fontsize=8)
         ax.plot(*start, "o", color="k", ms=5)
         s = r["summary"]
-        ax.set(title=f"{r['label']}: first {k} targets\nT(25) {s['T']['25']:.1f} steps/m, D(25) {s['D']['25']:.3f}",
+        t25, d25 = s["T"]["25"], s["D"]["25"]  # None when no target was come within 25 mm of
+        figures = "no target within 25 mm" if t25 is None else f"T(25) {t25:.1f} steps/m, D(25) {d25:.3f}"
+        ax.set(title=f"{r['label']}: first {k} targets\n{figures}",
                xlabel="x (m)", ylabel="y (m)", xlim=(0, arena[0]), ylim=(0, arena[1]), aspect="equal")
         ax.grid(alpha=0.3)
     return fig

@@ -15,8 +15,13 @@ TRAIN_KEYS = {"mapping", "neurons", "steps", "trials", "seconds", "curve", "out"
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
+    """A small indirect map trained by ``ekm train`` once per module: ``(dir, map file, plot, train JSON)``.
+    Every test that uses it can run alone."""
     d = tmp_path_factory.mktemp("maps")
     out, plot = d / "ind.npz", d / "ind.png"
+    code = main(["train", "--mapping", "indirect", "--neurons", "8", "--steps", "1500", "--trials", "2",
+                 "--eval-every", "500", "--eval-targets", "10", "--out", str(out), "--plot", str(plot), "--json"])
+    assert code == 0
     return d, out, plot
 
 
@@ -28,15 +33,17 @@ def run_cli(capsys, *argv):
 
 def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
     d, out, plot = trained
+    capsys.readouterr()  # the fixture's own output
     code, stdout, _ = run_cli(capsys, "train", "--mapping", "indirect", "--neurons", "8", "--steps", "1500",
-                              "--trials", "2", "--eval-every", "500", "--eval-targets", "10", "--out", out,
-                              "--plot", plot, "--json")
+                              "--trials", "2", "--eval-every", "500", "--eval-targets", "10", "--out", d / "again.npz",
+                              "--json")
     assert code == 0
     result = json.loads(stdout)
     assert TRAIN_KEYS <= set(result)
     assert [p["step"] for p in result["curve"]] == [0, 500, 1000, 1500]
     assert set(result["curve"][0]) >= {"step", "E_mm", "P", "T", "D"}
     assert out.stat().st_size > 0 and plot.stat().st_size > 10_000
+    assert np.array_equal(load_maps(out).ekm.M, load_maps(d / "again.npz").ekm.M)  # the same seed, the same maps
     code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "10", "--json")
     assert code == 0
     ev = json.loads(stdout)
@@ -48,6 +55,7 @@ def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
 
 def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     d, out, _ = trained
+    capsys.readouterr()
     code, stdout, _ = run_cli(capsys, "train", "--mapping", "direct", "--neurons", "8", "--priority", "16",
                               "--chart", "polar", "--steps", "500", "--trials", "1", "--eval-every", "500", "--eval-targets", "5",
                               "--out", tmp_path / "dir.npz", "--json")
@@ -63,6 +71,18 @@ def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
     assert (tmp_path / "paths.png").stat().st_size > 10_000
     code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "5")
     assert code == 0 and "E =" in stdout and "P(eps)" in stdout
+
+
+def test_paths_of_a_map_that_never_comes_within_25_mm_are_drawn(capsys, tmp_path):
+    """An untrained map reaches no target: the paths plot says so instead of failing on the missing T/D."""
+    code, _, _ = run_cli(capsys, "train", "--mapping", "indirect", "--neurons", "4", "--steps", "1", "--trials", "1",
+                         "--eval-every", "1", "--eval-targets", "3", "--out", tmp_path / "raw.npz", "--json")
+    assert code == 0
+    code, stdout, stderr = run_cli(capsys, "evaluate", tmp_path / "raw.npz", "--targets", "3", "--json",
+                                   "--paths", tmp_path / "paths.png")
+    result = json.loads(stdout)
+    assert code == 0 and stderr == "" and (tmp_path / "paths.png").stat().st_size > 10_000
+    assert result["P"]["25"] == 0.0 and result["T"]["25"] is None
 
 
 @pytest.mark.parametrize("argv, message", [
