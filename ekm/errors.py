@@ -16,3 +16,11 @@ class InputError(ValueError):
     """
 
     exit_status = 2
+
+
+class Interrupted(Exception):
+    """The user stopped a long command (Ctrl-C). The message is one line saying what was kept and how to go
+    on, e.g. ``"training stopped at step 30000; resume with: ekm train --resume indirect.checkpoint.npz"``;
+    the command line prints it and exits with status 130, as a shell does for SIGINT."""
+
+    exit_status = 130

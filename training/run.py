@@ -1,9 +1,12 @@
-"""The training driver: trials, chunks, progress and the periodic ch. 6.1 test (imperative shell).
+"""The training driver: trials, chunks, progress, the periodic ch. 6.1 test and checkpoints (imperative shell).
 
 :func:`train` runs ``tcfg.steps`` steps for ``tcfg.trials`` independent trials, in jitted chunks
 (``training.online.train_chunk``), and after every ``eval_every`` steps calls ``on_eval(step, maps)``
-— the ch. 6.1 test in practice — so a caller can record the learning curve. Trials get independent
-PRNG keys split from one ``seed``: the same seed gives the same maps.
+— the ch. 6.1 test in practice — so a caller can record the learning curve, then
+``on_checkpoint(step, trainees, key_run)`` so it can save a :mod:`training.checkpoint`. Trials get
+independent PRNG keys split from one ``seed``: the same seed gives the same maps. A run resumed from
+a checkpoint (``resume=(step, trainees, key_run)``) continues exactly as the uninterrupted run: each
+chunk's noise comes from ``fold_in(key_run, step)`` and the chunks after an evaluation are the same.
 """
 
 from __future__ import annotations
@@ -19,24 +22,34 @@ from training.online import TrainConfig, start, train_chunk
 MAX_CHUNK = 5000
 
 
+def fresh(cfg: EKMConfig, tcfg: TrainConfig, seed: int):
+    """The untrained carry of every trial and the run's key: ``(trainees, key_run)``."""
+    key_init, key_run = jax.random.split(jax.random.PRNGKey(seed))
+    return jax.vmap(lambda k: start(k, cfg, tcfg))(jax.random.split(key_init, tcfg.trials)), key_run
+
+
 def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int | None = None, on_eval=None,
-          progress: bool = False, params: RobotParams = KHEPERA):
+          on_checkpoint=None, resume=None, progress: bool = False, params: RobotParams = KHEPERA):
     """Train ``tcfg.trials`` maps online; returns the stacked maps (leading trial axis).
 
-    ``on_eval(step, maps)`` is called at step 0, after every ``eval_every`` steps and at the end.
+    ``on_eval(step, maps)`` is called at step 0, after every ``eval_every`` steps and at the end, each
+    time followed by ``on_checkpoint(step, trainees, key_run)`` (not at step 0). ``resume``:
+    ``(step, trainees, key_run)`` of a checkpoint taken after an evaluation; training continues from
+    there and step 0 is not evaluated again.
     """
-    key_init, key_run = jax.random.split(jax.random.PRNGKey(seed))
-    trainees = jax.vmap(lambda k: start(k, cfg, tcfg))(jax.random.split(key_init, tcfg.trials))
+    trainees, key_run = fresh(cfg, tcfg, seed)
+    done = 0
+    if resume is not None:
+        done, trainees, key_run = resume
     every = eval_every or tcfg.steps
     bar = None
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(total=tcfg.steps, unit="step", desc=f"training {cfg.mapping} ({tcfg.trials} trials)",
+        bar = tqdm(total=tcfg.steps, initial=done, unit="step", desc=f"training {cfg.mapping} ({tcfg.trials} trials)",
                    dynamic_ncols=True)
-    if on_eval:
+    if on_eval and done == 0:
         on_eval(0, trainees.ekm)
-    done = 0
     while done < tcfg.steps:
         target = min(tcfg.steps, (done // every + 1) * every)
         while done < target:
@@ -49,6 +62,8 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
                 bar.update(length)
         if on_eval:
             on_eval(done, trainees.ekm)
+        if on_checkpoint:
+            on_checkpoint(done, trainees, key_run)
     if bar is not None:
         bar.close()
     return trainees.ekm

@@ -14,7 +14,7 @@ import sys
 from ekm.cli import bench, evaluate, plan, run, train, worlds
 from ekm.cli.args import (finite_float, nonneg_float, nonneg_int, output_path, positive_float, positive_int,
                           print_json, show_progress, xy_point)
-from ekm.errors import InputError
+from ekm.errors import InputError, Interrupted
 
 #: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here.
 COMMANDS = (worlds, plan, train, evaluate, run, bench)
@@ -48,9 +48,12 @@ def main(argv=None) -> int:
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return InputError.exit_status
+    except Interrupted as exc:
+        print(f"interrupted: {exc}", file=sys.stderr)
+        return Interrupted.exit_status
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
-        return 130
+        return Interrupted.exit_status
     except BrokenPipeError:  # e.g. `ekm plan --json | head`: the reader left, nothing to report
         import os
 
