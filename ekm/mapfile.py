@@ -87,10 +87,11 @@ def load_maps(path) -> SavedMaps:
     try:
         with np.load(path, allow_pickle=False) as data:
             arrays = {k: data[k] for k in data.files}
-    except (zipfile.BadZipFile, OSError, EOFError) as exc:
-        raise InputError(f"{where}: not a map file (cannot read it as .npz: {exc})") from None
     except ValueError as exc:  # e.g. an object array, which would need pickle
-        raise InputError(f"{where}: refused ({exc})") from None
+        raise InputError(f"{where}: refused ({_first_line(exc)})") from None
+    except Exception as exc:  # noqa: BLE001 — a damaged archive or array header fails in many ways inside numpy
+        raise InputError(f"{where}: not a map file (cannot read it as .npz: {exc.__class__.__name__}: "
+                         f"{_first_line(exc)})") from None
     if "metadata" not in arrays:
         raise InputError(f"{where}: not an ekm map file (no 'metadata' entry)")
     try:
@@ -138,6 +139,11 @@ def load_maps(path) -> SavedMaps:
     w, o = jnp.asarray(arrays["w"], jnp.float32), jnp.asarray(arrays[out], jnp.float32)
     ekm = IndirectEKM(w, o) if cfg.mapping == "indirect" else DirectEKM(w, o)
     return SavedMaps(ekm=ekm, cfg=cfg, meta=meta, arena=arena, curve=curve)
+
+
+def _first_line(exc: BaseException) -> str:
+    """An exception's message cut to its first line (numpy's can span several), so errors stay one line."""
+    return str(exc).strip().splitlines()[0] if str(exc).strip() else exc.__class__.__name__
 
 
 def _finite(x) -> bool:
