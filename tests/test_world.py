@@ -133,6 +133,25 @@ def test_a_thin_segment_obstacle_is_slid_along_and_around_never_through():
     assert np.all(trace[crossings, 1] > 0.7)  # past x = 0.5 only beyond the segment's upper end
 
 
+@pytest.mark.parametrize("wall_angle", np.radians(np.arange(0, 180, 30)).tolist(), ids=lambda a: f"wall{math.degrees(a):.0f}")
+@pytest.mark.parametrize("incidence", np.radians([0.0, 20.0, 45.0, 60.0]).tolist(), ids=lambda a: f"in{math.degrees(a):.0f}")
+def test_at_top_speed_with_noise_the_robot_never_tunnels_through_a_thin_wall(wall_angle, incidence):
+    """24 thin (zero-thickness) walls and approach directions: full speed on both wheels, 10 % slip noise, 2 s."""
+    centre = np.array([0.5, 0.5])
+    along = np.array([math.cos(wall_angle), math.sin(wall_angle)])
+    normal = np.array([-along[1], along[0]])
+    a, b = centre - 0.4 * along, centre + 0.4 * along
+    heading = math.atan2(*(normal * math.cos(incidence) + along * math.sin(incidence))[::-1])
+    start = centre - 0.15 * normal  # 15 cm before the wall, driving at it
+    world = parse_world({"name": "thin", "size": [1.0, 1.0], "wall_thickness": 0.0,
+                         "walls": [[*a.tolist(), *b.tolist()]], "start": [*start.tolist(), heading], "goal": [0.1, 0.1]})
+    sim = PymunkWorld(world, seed=int(1000 * wall_angle + 10 * incidence))
+    trace = np.concatenate([sim.step([C, C])[1] for _ in range(16)])
+    side = (trace[:, :2] - centre) @ normal  # signed distance of the centre from the wall's line
+    assert side.max() < -KHEPERA.radius + MAX_OVERLAP  # never past the wall, every 16 ms sub-step
+    assert sim.collisions >= 1
+
+
 def test_a_pushing_moving_obstacle_shoves_the_robot_instead_of_overlapping_it():
     world = parse_world({"name": "push", "size": [1.0, 0.4], "start": [0.5, 0.2, 0.0], "goal": [0.9, 0.2],
                          "moving": [{"shape": {"type": "circle", "radius": 0.025},
