@@ -25,6 +25,8 @@ body, so a moving obstacle shoves the robot) is removed before the sub-step: the
 the robot slides along walls instead of being driven through them. Without this the solver's gentle
 position correction lets a velocity-controlled body sink about a body radius into a wall.
 Overlaps stay within one sub-step of travel (about 2.6 mm at full speed) and decay to the 0.1 mm slop.
+A moving obstacle (a kinematic body, of infinite mass) that shoves the robot against a wall would squeeze
+it through: there the wall wins, and the robot is set back onto the wall's surface (``_unsqueeze``).
 
 Moving obstacles are kinematic bodies: before each sub-step their velocity is set to the secant
 ``(path(t + dt) - position) / dt``, so they sit exactly on their path after every sub-step and their
@@ -153,6 +155,9 @@ class PymunkWorld:
         disc.collision_type = _ROBOT_COLLISION_TYPE
         disc.filter = pymunk.ShapeFilter(categories=ROBOT_CATEGORY)
         self.space.add(self._body, disc)
+        self._disc = disc
+        # Deepest overlap with a wall that the robot's own motion can cause: one sub-step at full speed.
+        self._max_overlap = (1.0 + params.actuator_noise) * params.max_wheel_speed * params.dt
         self.collisions = 0
         self.space.on_collision(_ROBOT_COLLISION_TYPE, None, begin=self._count_collision)
 
@@ -244,7 +249,25 @@ class PymunkWorld:
         self._body.velocity = self._slide((v * math.cos(theta), v * math.sin(theta)))
         self._body.angular_velocity = omega
         self.space.step(dt)
+        if self._movers:
+            self._unsqueeze()
         self._k += 1
+
+    def _unsqueeze(self) -> None:
+        """Move the robot out of any static shape it was pressed into deeper than its own motion can go.
+
+        A kinematic mover has infinite mass: shoving the robot against a wall, it would squeeze it through.
+        Here the wall wins — the robot is set back onto the wall's surface and the mover overlaps it
+        instead (a contact already counted as a collision).
+        """
+        for info in self.space.shape_query(self._disc):
+            points = info.contact_point_set.points
+            if info.shape.body.body_type != pymunk.Body.STATIC or not points:
+                continue
+            depth = -min(pt.distance for pt in points)
+            if depth > self._max_overlap:
+                self._body.position -= info.contact_point_set.normal * (depth - _SLOP)
+                self.space.reindex_shapes_for_body(self._body)
 
     def _slide(self, velocity) -> tuple[float, float]:
         """``velocity`` without the parts that push into current contacts (relative to the other body)."""
