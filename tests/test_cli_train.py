@@ -47,7 +47,10 @@ def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
     code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "10", "--json")
     assert code == 0
     ev = json.loads(stdout)
-    assert set(ev) == {"E_mm", "P", "T", "D", "trials", "targets", "capped"}
+    assert list(ev)[:7] == ["E_mm", "P", "T", "D", "trials", "targets", "capped"]  # DESIGN §6, then provenance
+    assert ev["seed"] == 0 and ev["ekm"]["neurons"] == 8 and ev["trained"]["seed"] == 0 and ev["ekm_version"]
+    assert result["seed"] == 0 and result["ekm"]["mapping"] == "indirect" and result["train"]["steps"] == 1500
+    assert result["jax_version"] and result["ekm_version"] and result["test"] == {"targets": 10, "seed": 0}
     assert set(ev["P"]) == {"5", "10", "25"} and ev["trials"] == 2 and ev["targets"] == 10
     last = result["curve"][-1]
     assert ev["E_mm"] == last["E_mm"] and ev["P"] == last["P"] and ev["T"] == last["T"] and ev["D"] == last["D"]

@@ -77,6 +77,22 @@ def output_path(text: str, option: str, suffix: str):
     return path
 
 
+def provenance(jax: bool = True) -> dict:
+    """What made a ``--json`` result, for reproducing it later: the package's version and, where JAX
+    computed it, JAX's (read from the installed metadata, without importing JAX)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    from ekm import __version__
+
+    out = {"ekm_version": __version__}
+    if jax:
+        try:
+            out["jax_version"] = version("jax")
+        except PackageNotFoundError:
+            out["jax_version"] = None
+    return out
+
+
 def print_json(obj) -> None:
     """Write ``obj`` as the command's stable JSON output."""
     json.dump(obj, sys.stdout, indent=2, allow_nan=False)

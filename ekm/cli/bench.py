@@ -3,7 +3,7 @@ is in ``benchmarks/``)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import print_json
+from ekm.cli.args import print_json, provenance
 
 
 def add_parser(sub) -> None:
@@ -19,7 +19,7 @@ def run(args) -> None:
 
     result = quick(args.mapping)
     if args.json:
-        print_json(result)
+        print_json({**result, **provenance()})
         return
     print(f"online training, {result['mapping']} {result['neurons']}x{result['neurons']} map, "
           f"{result['trials']} trials, on {', '.join(result['devices'])} (jax {result['jax_version']})")

@@ -3,7 +3,7 @@ paths for them)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_int, output_path, positive_int, print_json
+from ekm.cli.args import nonneg_int, output_path, positive_int, print_json, provenance
 from ekm.cli.summary import print_summary, summarize_test
 
 
@@ -32,7 +32,8 @@ def run(args) -> None:
     results = []
     for path, saved in zip(args.maps, loaded):
         s = summarize_test(saved.ekm, saved.cfg, saved.arena, args.targets, args.seed)
-        results.append({"file": path, "mapping": saved.cfg.mapping, **s})
+        results.append({"file": path, "mapping": saved.cfg.mapping, **s, "ekm": saved.cfg.to_dict(),
+                        "trained": {k: saved.meta.get(k) for k in ("seed", "steps", "package_version", "jax_version")}})
     if plot:
         from evaluation.plots import save_figure_6_1_6_2
 
@@ -43,8 +44,10 @@ def run(args) -> None:
         _save_paths(args.maps, loaded, args.targets, args.seed, paths)
     if args.json:
         keys = ("E_mm", "P", "T", "D", "trials", "targets", "capped")
-        print_json({k: results[0][k] for k in keys} if len(results) == 1
-                   else {"maps": [{"file": r["file"], "mapping": r["mapping"], **{k: r[k] for k in keys}} for r in results]})
+        about = ("file", "mapping", "ekm", "trained")
+        test = {"seed": args.seed, **provenance()}
+        print_json({**{k: results[0][k] for k in keys + about}, **test} if len(results) == 1
+                   else {"maps": [{k: r[k] for k in about[:2] + keys + about[2:]} for r in results], **test})
         return
     for r in results:
         print_summary(r, f"{r['file']} ({r['mapping']})")

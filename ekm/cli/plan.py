@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_float, positive_float, print_json, xy_point
+from ekm.cli.args import nonneg_float, positive_float, print_json, provenance, xy_point
 
 
 def add_parser(sub) -> None:
@@ -41,7 +41,8 @@ def run(args) -> None:
     if args.json:
         print_json({"method": p.method, "cells": p.cells, "graph_edges": len(p.graph.edges),
                     "path_cells": list(p.route), "checkpoints": p.checkpoints.round(6).tolist(),
-                    "seconds": round(seconds, 6)})
+                    "seconds": round(seconds, 6), "world": world.name, "cell": p.cell, "at": args.at,
+                    **provenance(jax=False)})
         return
     ny, nx = p.bitmap.shape
     print(f"{world.name} at t = {args.at:g} s: {p.method} decomposition of a {nx} x {ny} bitmap "

@@ -3,7 +3,7 @@ ch. 6.1 along the way (DESIGN §3, §6); checkpoints at every test, ``--resume``
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_int, output_path, positive_int, print_json, show_progress
+from ekm.cli.args import nonneg_int, output_path, positive_int, print_json, provenance, show_progress
 from ekm.cli.summary import print_summary, summarize_test
 from ekm.config import CHARTS
 from ekm.errors import InputError, Interrupted
@@ -156,7 +156,9 @@ def run(args) -> None:
                               "w": np.asarray(maps.w[0])}], plot)
     if args.json:
         print_json({"mapping": cfg.mapping, "neurons": cfg.neurons, "steps": tcfg.steps, "trials": tcfg.trials,
-                    "seconds": round(seconds, 3), "curve": curve, "out": str(out)})
+                    "seconds": round(seconds, 3), "curve": curve, "out": str(out), "seed": settings["seed"],
+                    "world": world.name, "ekm": cfg.to_dict(), "train": tcfg.to_dict(),
+                    "test": {"targets": settings["eval_targets"], "seed": settings["test_seed"]}, **provenance()})
         return
     final = curve[-1]
     resumed = f" (resumed at step {resume[0]})" if resume else ""

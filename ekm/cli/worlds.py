@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import print_json
+from ekm.cli.args import print_json, provenance
 from ekm.errors import InputError
 
 
@@ -26,7 +26,7 @@ def run(args) -> None:
     worlds = [load_world(p) for p in args.check] if args.check else [load_world(n) for n in named_worlds()]
     written = _plot_worlds(worlds, args.plot) if args.plot else []
     if args.json:
-        print_json({"worlds": [w.counts() for w in worlds]})
+        print_json({"worlds": [w.counts() for w in worlds], **provenance(jax=False)})
         return
     rows = [("name", "size (m)", "walls", "obstacles", "unforeseen", "moving", "events", "goal")]
     for w in worlds:
