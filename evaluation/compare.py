@@ -1,0 +1,130 @@
+"""Comparing architectures at scale: every architecture × world × trial through the scenario runner.
+
+A comparison is a bag of independent runs (DESIGN §5, "scale-out"): a run is a pure function of
+(world, architecture, run seed, map), so the runs can go to any :class:`concurrent.futures.Executor` —
+a local process pool, or a Dask ``distributed`` cluster's executor — in any order, on any number of
+workers, and the results are the same. Trial ``i`` of a comparison started with ``seed`` runs with run
+seed ``seed + i`` in every world and for every architecture: the same noise streams for all of them
+(common random numbers), so differences between architectures are not differences of luck.
+
+:func:`compare` submits the runs and collects their outcome records; :func:`summarize` turns them into
+the rows of ``ekm compare`` (DESIGN §6) with each success rate's 95 % Wilson interval.
+"""
+
+from __future__ import annotations
+
+import math
+from concurrent.futures import Executor
+from dataclasses import dataclass
+
+from evaluation.scenario import ScenarioConfig
+
+
+@dataclass(frozen=True)
+class Job:
+    """One run of a comparison: everything a worker needs, as plain values (it pickles to any process or
+    machine). ``world``: a named world or a world file's path (read by the worker); ``architecture``: the
+    full spelling (:class:`robots.controllers.spec.ArchitectureSpec`); ``label``: the spelling the user
+    gave; ``map_path``: a map file, or None for the architecture's shipped map; ``keep_path``: return the
+    robot's path too (for the trajectory grid)."""
+
+    world: str
+    architecture: str
+    label: str
+    trial: int
+    seed: int
+    config: ScenarioConfig
+    map_path: str | None = None
+    keep_path: bool = False
+
+
+_MAPS: dict = {}
+
+
+def run_job(job: Job) -> dict:
+    """Run one job (in whichever process the executor chose): its outcome record, plus ``label``, ``trial``,
+    the ``given`` world spelling and, with ``keep_path``, ``path`` (the centre every 0.128 s, as lists)."""
+    from ekm.mapfile import load_maps
+    from evaluation.scenario import run_architecture
+    from robots.controllers.spec import parse_architecture
+    from robots.worldfile import load_world
+
+    spec = parse_architecture(job.architecture)
+    maps = None
+    if job.map_path and spec.uses_map:
+        if job.map_path not in _MAPS:  # one load per worker process, not one per run
+            _MAPS[job.map_path] = load_maps(job.map_path)
+        maps = _MAPS[job.map_path]
+    rec = run_architecture(load_world(job.world), spec, maps, seed=job.seed, config=job.config,
+                           source=job.map_path or "")
+    out = {**rec.outcome(), "label": job.label, "trial": job.trial, "given": job.world}
+    if job.keep_path:
+        every = max(1, round(rec.period / (rec.times[1] - rec.times[0]))) if len(rec.times) > 1 else 1
+        out["path"] = rec.poses[::every, :2].round(5).tolist()
+    return out
+
+
+def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path: str | None = None,
+         keep_paths: bool = False) -> list[Job]:
+    """Every (architecture, world, trial) of a comparison, in a fixed order; trial 0 keeps its path when
+    ``keep_paths``."""
+    return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
+                map_path=map_path, keep_path=keep_paths and i == 0)
+            for spec in specs for w in worlds for i in range(trials)]
+
+
+def compare(job_list: list[Job], executor: Executor | None = None, on_done=None) -> list[dict]:
+    """Run ``job_list`` on ``executor`` (in this process if None) and return their records in the jobs' order.
+
+    Any :class:`concurrent.futures.Executor` works — a local process pool, or a Dask cluster's
+    ``client.get_executor()`` — through its ``map``, one code path for both. ``on_done(record)`` is called
+    for each run as its result is taken (progress bars).
+    """
+    results = []
+    for record in (map(run_job, job_list) if executor is None else executor.map(run_job, job_list)):
+        results.append(record)
+        if on_done:
+            on_done(record)
+    return results
+
+
+def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
+    """The 95 % Wilson score interval of a success rate ``successes / n`` (Wilson 1927): unlike the normal
+    approximation it stays inside [0, 1] and is not empty at 0/10 or 10/10."""
+    if n == 0:
+        return (0.0, 1.0)
+    p = successes / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def summarize(records: list[dict], worlds, labels) -> list[dict]:
+    """One row per (world, architecture) in the given order — DESIGN §6's ``results``: ``world,
+    architecture, trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions, trapped`` —
+    the means over the runs that reached the goal (None if none did)."""
+    rows = []
+    for label in labels:
+        for world in worlds:
+            rs = [r for r in records if r["label"] == label and r["given"] == world]
+            ok = [r for r in rs if r["reached"]]
+            lo, hi = wilson(len(ok), len(rs))
+            rows.append({"world": rs[0]["world"] if rs else world, "architecture": label, "trials": len(rs),
+                         "success_rate": round(len(ok) / len(rs), 4) if rs else None,
+                         "success_ci95": [round(lo, 4), round(hi, 4)],
+                         "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
+                         "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
+                         "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
+                         "runs_by_trial": "".join(_letter(r) for r in sorted(rs, key=lambda r: r["trial"]))})
+    return rows
+
+
+def _letter(r: dict) -> str:
+    """R reached, T trapped, C arrived after a collision, N no route after a change of the map, L time limit."""
+    if r["reached"]:
+        return "R"
+    if r["trapped"]:
+        return "T"
+    if r["arrived"]:
+        return "C"
+    return "N" if "route" in r["ended"] else "L"

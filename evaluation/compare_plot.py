@@ -1,0 +1,80 @@
+"""The picture of ``ekm compare --plot``: success rates with their 95 % intervals, and one path per cell.
+
+Top: for each world a group of bars, one per architecture, the bar the success rate and the whisker its
+Wilson interval. Below: a grid — architectures down, worlds across — each cell the world to scale with
+the path of the comparison's first trial, ending in a green dot (reached), an orange square (trapped) or
+a red cross (anything else). Built on :class:`matplotlib.figure.Figure`, written atomically.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from robots.plot import STYLE, draw_shape, save_figure
+
+_COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange", "tab:brown", "tab:pink", "tab:gray")
+
+
+def comparison_figure(rows, records, worlds, labels) -> Figure:
+    """The figure for summary ``rows`` (in :func:`evaluation.compare.summarize`'s order) and run ``records``."""
+    from robots.worldfile import load_world
+
+    n_w, n_a = len(worlds), len(labels)
+    fig = Figure(figsize=(max(8.0, 2.4 * n_w), 3.2 + 1.9 * n_a), layout="constrained")
+    grid = fig.add_gridspec(1 + n_a, n_w, height_ratios=[1.6] + [1.0] * n_a)
+    bars = fig.add_subplot(grid[0, :])
+    width = 0.8 / max(1, n_a)
+    for j, label in enumerate(labels):
+        xs, ys, lo, hi = [], [], [], []
+        for i in range(n_w):
+            r = rows[j * n_w + i]  # summarize's order: architectures, then worlds
+            xs.append(i - 0.4 + width * (j + 0.5))
+            ys.append(r["success_rate"] or 0.0)
+            lo.append(ys[-1] - r["success_ci95"][0])
+            hi.append(r["success_ci95"][1] - ys[-1])
+        bars.bar(xs, ys, width * 0.9, color=_COLOURS[j % len(_COLOURS)], label=label,
+                 yerr=[lo, hi], capsize=2, error_kw={"linewidth": 0.8})
+    bars.set_xticks(range(n_w), [load_world(w).name for w in worlds], rotation=15, fontsize=8)
+    bars.set(ylim=(0, 1.05), ylabel="success rate", title="reached the goal without a collision (95 % Wilson intervals)")
+    bars.legend(fontsize=7, ncols=min(n_a, 4), loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
+    bars.grid(axis="y", alpha=0.3)
+    for i, world_name in enumerate(worlds):
+        world = load_world(world_name)
+        for j, label in enumerate(labels):
+            ax = fig.add_subplot(grid[1 + j, i])
+            _draw_cell(ax, world, next((r for r in records if r["label"] == label and r["given"] == world_name
+                                        and "path" in r), None))
+            if i == 0:
+                ax.set_ylabel(label, fontsize=7)
+            if j == 0:
+                ax.set_title(world.name, fontsize=8)
+    return fig
+
+
+def _draw_cell(ax, world, record) -> None:
+    w, h = world.size
+    for wall in world.border + world.walls:
+        draw_shape(ax, wall, STYLE["wall"], thickness=world.wall_thickness)
+    for shape in world.obstacles:
+        draw_shape(ax, shape, STYLE["obstacle"])
+    for shape in world.unforeseen:
+        draw_shape(ax, shape, STYLE["unforeseen"])
+    for event in world.events:
+        for shape in event.add:
+            draw_shape(ax, shape, STYLE["event"])
+    for mover in world.moving:
+        draw_shape(ax, mover.at(0.0), STYLE["moving"])
+    gx, gy = world.goal_at(0.0)
+    ax.plot([gx], [gy], "*", color="tab:green", ms=7)
+    if record is not None:
+        path = np.asarray(record["path"])
+        ax.plot(path[:, 0], path[:, 1], "-", color="tab:blue", lw=0.9)
+        marker = ("o", "tab:green") if record["reached"] else (("s", "darkorange") if record["trapped"] else ("x", "red"))
+        ax.plot(path[-1, 0], path[-1, 1], marker[0], color=marker[1], ms=5, mew=1.5, fillstyle="none")
+    ax.set(xlim=(-0.02, w + 0.02), ylim=(-0.02, h + 0.02), aspect="equal", xticks=[], yticks=[])
+
+
+def save_comparison(rows, records, worlds, labels, path) -> None:
+    """Draw :func:`comparison_figure` and write it atomically to ``path``."""
+    save_figure(comparison_figure(rows, records, worlds, labels), path, dpi=110)
