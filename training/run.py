@@ -28,6 +28,24 @@ def fresh(cfg: EKMConfig, tcfg: TrainConfig, seed: int):
     return jax.vmap(lambda k: start(k, cfg, tcfg))(jax.random.split(key_init, tcfg.trials)), key_run
 
 
+def trial_sharding(trials: int, devices=None):
+    """How to spread the trial axis over the JAX devices present: a :class:`jax.sharding.NamedSharding` that
+    splits axis 0 over as many devices as divide ``trials`` evenly, or None when that is one device.
+
+    The trials are independent (``vmap``), so each device trains its own share and nothing is exchanged;
+    a multi-GPU host, or ``XLA_FLAGS=--xla_force_host_platform_device_count=K`` on a CPU, shares the work.
+    """
+    devices = list(jax.devices() if devices is None else devices)
+    used = max(d for d in range(1, len(devices) + 1) if trials % d == 0)
+    if used == 1:
+        return None
+    from jax.sharding import Mesh, NamedSharding, PartitionSpec
+
+    import numpy as np
+
+    return NamedSharding(Mesh(np.asarray(devices[:used]), ("trials",)), PartitionSpec("trials"))
+
+
 def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int | None = None, on_eval=None,
           on_checkpoint=None, resume=None, progress: bool = False, params: RobotParams = KHEPERA):
     """Train ``tcfg.trials`` maps online; returns the stacked maps (leading trial axis).
@@ -41,6 +59,9 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
     done = 0
     if resume is not None:
         done, trainees, key_run = resume
+    sharding = trial_sharding(tcfg.trials)
+    if sharding is not None:
+        trainees = jax.device_put(trainees, sharding)
     every = eval_every or tcfg.steps
     bar = None
     if progress:
@@ -55,6 +76,8 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
         while done < target:
             length = min(MAX_CHUNK, target - done)
             keys = jax.random.split(jax.random.fold_in(key_run, done), tcfg.trials)
+            if sharding is not None:
+                keys = jax.device_put(keys, sharding)
             trainees = train_chunk(trainees, keys, float(done), length=length, cfg=cfg, tcfg=tcfg, params=params)
             done += length
             if bar is not None:
