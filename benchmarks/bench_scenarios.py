@@ -7,7 +7,7 @@ Run from the repository root (about a minute on 2 cores with the defaults)::
     python benchmarks/bench_scenarios.py --json                   # the numbers
 
 (options: ``--architectures`` in ``ekm run``'s spelling, comma-separated, default
-``fusion,fields,fields:form=thesis`` — any architecture :mod:`robots.controllers.spec` knows works;
+``fusion,fields,fields:form=thesis,samba,schema`` — any architecture :mod:`robots.controllers.spec` knows works;
 ``--worlds`` comma-separated named worlds, default ``three-rooms-static,three-rooms-moving,concave-obstacle``;
 ``--seeds 3`` runs per world; ``--calls 300`` / ``--repeat 5`` for the tight loops, best block kept.)
 
@@ -72,7 +72,7 @@ from robots.controllers.spec import parse_architectures  # noqa: E402
 from robots.world import PymunkWorld  # noqa: E402
 from robots.worldfile import load_world  # noqa: E402
 
-DEFAULT_ARCHITECTURES = "fusion,fields,fields:form=thesis"
+DEFAULT_ARCHITECTURES = "fusion,fields,fields:form=thesis,samba,schema"
 DEFAULT_WORLDS = "three-rooms-static,three-rooms-moving,concave-obstacle"
 PARTS = ("physics", "sensing", "controller", "planner", "rest")
 PART_LABEL = {"physics": "pymunk physics", "sensing": "IR sensing", "controller": "controller step",
@@ -255,18 +255,26 @@ def measure(spec, worlds: dict, seeds: list[int], config: ScenarioConfig, calls:
             maps_cache: dict) -> dict:
     """Warm-up, timed runs and step-alone numbers of one architecture on every world."""
     chart = spec.default_chart
-    if chart not in maps_cache:
-        maps_cache[chart] = load_default_map(chart)
-    maps = maps_cache[chart]
     controllers = {}
+    if spec.uses_map:
+        if chart not in maps_cache:
+            maps_cache[chart] = load_default_map(chart)
+        maps = maps_cache[chart]
 
-    def controller(seed):
-        trial = seed % maps.trials
-        if trial not in controllers:
-            controllers[trial] = spec.build(jax.tree.map(lambda a: a[trial], maps.ekm), maps.cfg)
-        return controllers[trial]
+        def controller(seed):
+            trial = seed % maps.trials
+            if trial not in controllers:
+                controllers[trial] = spec.build(jax.tree.map(lambda a: a[trial], maps.ekm), maps.cfg)
+            return controllers[trial]
+    else:  # Samba, motor schemas: no map
 
-    out = {"architecture": str(spec), "label": spec.label, "map": f"shipped {chart}-chart map", "worlds": {}}
+        def controller(seed):
+            if None not in controllers:
+                controllers[None] = spec.build()
+            return controllers[None]
+
+    drives = f"shipped {chart}-chart map" if spec.uses_map else "no map"
+    out = {"architecture": str(spec), "label": spec.label, "map": drives, "worlds": {}}
     for name, world in worlds.items():
         warm = one_run(world, controller(seeds[0]), seeds[0], config, record=True)
         runs = [one_run(world, controller(s), s, config) for s in seeds]

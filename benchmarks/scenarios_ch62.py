@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 DEFAULT_WORLDS = ("three-rooms-static", "three-rooms-moving", "three-rooms-changed", "extended-obstacle",
                   "concave-obstacle")
-DEFAULT_ARCHITECTURES = "fusion,fusion:sensors=long,period=0.128,fields,fields:form=thesis"
+DEFAULT_ARCHITECTURES = "fusion,fusion:sensors=long,period=0.128,fields,fields:form=thesis,samba,schema"
 _MAPS: dict = {}
 
 
@@ -45,7 +45,7 @@ def one(job):
         _MAPS[map_path] = load_maps(map_path)
     rec = run_architecture(load_world(world), parse_architecture(architecture), _MAPS.get(map_path), seed=seed,
                            config=ScenarioConfig(recover=recover, time_limit=time_limit, trap_after=trap_after), source=map_path or "")
-    return {"world": world, "label": architecture, **rec.outcome()}
+    return {**rec.outcome(), "label": architecture, "given": world}  # "given": the name or path as typed
 
 
 def letter(r: dict) -> str:
@@ -62,7 +62,7 @@ def summarize(results: list[dict], worlds, architectures, seeds) -> list[dict]:
     rows = []
     for arch in architectures:
         for world in worlds:
-            rs = sorted((r for r in results if r["label"] == arch and r["world"] == world), key=lambda r: r["seed"])
+            rs = sorted((r for r in results if r["label"] == arch and r["given"] == world), key=lambda r: r["seed"])
             ok = [r for r in rs if r["reached"]]
             rows.append({"architecture": arch, "world": world, "runs": len(rs), "reached": len(ok),
                          "trapped": sum(r["trapped"] for r in rs), "collisions": sum(r["collisions"] for r in rs),

@@ -106,3 +106,31 @@ def test_python_m_ekm_cli_run_exits_2_without_a_traceback():
     proc = subprocess.run([sys.executable, "-m", "ekm.cli", "run", "--world", "open-arena", "--architecture", "x"],
                           capture_output=True, text=True)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1
+
+
+# ---------------------------------------------------------------------------------------------- --maps-at (Samba)
+
+def test_maps_at_draws_samba_s_action_maps_below_the_run(capsys, tmp_path):
+    png = tmp_path / "maps.png"
+    status, out, err = run(capsys, "--world", "open-arena", "--architecture", "samba", "--maps-at", "1",
+                           "--plot", str(png), "--json")
+    rec = json.loads(out)
+    assert status == 0 and err == "" and rec["reached"] and rec["architecture"].startswith("samba:")
+    assert rec["map"] is None and rec["trial"] is None
+    assert png.stat().st_size > 50_000
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--architecture", "fusion", "--maps-at", "5", "--plot", "x.png"],
+     "--maps-at: architecture fusion has no action maps (only samba has)"),
+    (["--architecture", "fields", "--maps-at", "5", "--plot", "x.png"], "--maps-at: architecture fields has no action"),
+    (["--architecture", "samba", "--maps-at", "5"], "--maps-at: needs --plot PNG"),
+    (["--architecture", "samba", "--maps-at", "-1", "--plot", "x.png"], "--maps-at: must be >= 0"),
+    (["--architecture", "samba", "--maps-at", "soon", "--plot", "x.png"], "--maps-at"),
+    (["--architecture", "samba:avoid_ttc=-1"], "samba: avoid_ttc must be > 0"),
+])
+def test_maps_at_and_samba_parameters_are_checked_in_one_line(capsys, tmp_path, monkeypatch, argv, message):
+    monkeypatch.chdir(tmp_path)
+    status, out, err = run(capsys, "--world", "open-arena", *argv)
+    assert status == 2 and out == "" and err.startswith("error: ") and message in err and err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []

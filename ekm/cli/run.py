@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_int, output_path, positive_float, print_json, show_progress
+from ekm.cli.args import nonneg_float, nonneg_int, output_path, positive_float, print_json, show_progress
 
 ARCHITECTURE_HELP = ("ARCH[:k=v,...], e.g. fields, fields:form=thesis, fusion:beta=0.6,sensors=long; "
                      "without parameters each runs its best documented variant")
@@ -23,6 +23,9 @@ def add_parser(sub) -> None:
                    help="simulated seconds before the run is given up (default 120)")
     p.add_argument("--plot", metavar="PNG", help="draw the run to scale (Fig. 6.3-6.8)")
     p.add_argument("--gif", metavar="GIF", help="animate the run")
+    p.add_argument("--maps-at", type=nonneg_float, metavar="T",
+                   help="with --plot and samba: draw the Goto, Avoid and MAV action maps of the tick nearest T s "
+                        "below the run (Riekki's Figs. 13-15)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -67,6 +70,13 @@ def run(args) -> None:
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
     world, spec, maps, source, config = resolve(args)
+    if args.maps_at is not None:
+        from ekm.errors import InputError
+
+        if spec.name != "samba":
+            raise InputError(f"--maps-at: architecture {spec.name} has no action maps (only samba has)")
+        if not plot:
+            raise InputError("--maps-at: needs --plot PNG to draw the maps on")
     bar, on_tick = None, None
     if show_progress(args):
         from tqdm import tqdm
@@ -83,7 +93,13 @@ def run(args) -> None:
     finally:
         if bar is not None:
             bar.close()
-    if plot:
+    if plot and args.maps_at is not None:  # the same run again, recording the tick nearest T (a run is pure)
+        from evaluation.actionmap_plot import record_tick, save_run_with_maps
+
+        again, moment = record_tick(world, spec, args.maps_at, seed=args.seed, config=config)
+        again.map_source, again.trial = rec.map_source, rec.trial
+        save_run_with_maps(again, moment, plot)
+    elif plot:
         from evaluation.scenario_plot import save_run
 
         save_run(rec, plot)

@@ -17,6 +17,8 @@ from typing import Any, Callable
 from ekm.errors import InputError
 from robots.controllers import fields as neural_fields
 from robots.controllers import fusion
+from robots.controllers import samba
+from robots.controllers import schema as motor_schemas
 
 
 @dataclass(frozen=True)
@@ -37,6 +39,10 @@ ARCHITECTURES: dict[str, Architecture] = {
                            "command fusion: indirect EKM + Braitenberg type-3C avoidance (ch. 4.5)", fusion.DEFAULT_CHART),
     "fields": Architecture("fields", neural_fields.FieldParams, neural_fields.build,
                            "dynamic neural fields: cooperative EKMs (ch. 5)", neural_fields.DEFAULT_CHART),
+    "samba": Architecture("samba", samba.SambaParams, samba.build,
+                          "Samba action maps: MAV(Goto, filtered Avoid), heaviest action (Riekki 1999)", None),
+    "schema": Architecture("schema", motor_schemas.SchemaParams, motor_schemas.build,
+                           "motor schemas: move-to-goal + avoid-obstacle + noise vectors, summed (Arkin ch. 4.4)", None),
 }
 
 

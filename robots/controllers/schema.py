@@ -1,0 +1,237 @@
+"""Motor schemas (Arkin, *Behavior-Based Robotics*, ch. 3.3.2 and 4.4): the classic potential-field baseline.
+
+Each schema maps what it perceives to one action vector (direction and magnitude, m/s) in the robot's
+frame; the vectors are multiplied by their gains and **summed**, the sum is normalised by clipping its
+magnitude to c* (Arkin: "often merely by clipping the magnitude") and driven with
+:func:`~robots.controllers.base.velocity_to_wheels` — the one mapping from a holonomic (direction, speed)
+to the differential drive that Samba uses too. No field is computed anywhere: each tick only the vectors
+at the robot's current position are (Arkin ch. 3.3.2: "the only computation needed is that required to
+assess the forces from the robot's current position"). The schemas, as Arkin encodes them (Fig. 4.10):
+
+- **move-to-goal** towards the current checkpoint u_p = (α, d): direction α; magnitude
+  ``goal_gain · min(1, d / slow)`` — Arkin's ballistic schema (a fixed gain) far from the checkpoint,
+  falling linearly to zero within ``slow`` of it (his *controlled* version), so the robot stops at the
+  goal: the move-to-goal speed is below half a Khepera speed unit within ``slow · 4 mm/s / goal_gain``
+  of it (0.6 mm with the defaults), well inside the 5 mm that ch. 6.2.1 asks for;
+- **avoid-static-obstacle**, once per IR hit (every sensed point is an obstacle of radius 0, placed at
+  the reading along its sensor's ray, :func:`~robots.controllers.base.hit_points`): directed from the
+  point through the robot's centre, with Arkin's magnitude law written in the gap g between the body
+  surface and the point (the reading itself; Arkin's d − R with the robot's radius on the point)::
+
+      0                                  for g > S          (outside the sphere of influence)
+      avoid_gain · (S − g) / (S − R)     for R < g <= S     (rising linearly as the obstacle nears)
+      margin_gain                        for g <= R         (Arkin's ∞ inside the safety margin)
+
+  with S = ``influence`` and R = ``margin``. Arkin's ∞ becomes a finite ``margin_gain`` that no sum of
+  move-to-goal and noise can outweigh, so within the margin the robot moves away first;
+- **avoid-static-obstacle for the declared moving obstacles** (``obs.markers``, Samba's object markers):
+  the same law from each marker's *current* position, with g the gap between the two bodies (centre
+  distance − marker radius − body radius) — Arkin instantiates the schema "differently for either
+  environmental obstacles or other robots"; it reacts to where a mover is, not where it will be;
+- **noise**: magnitude ``noise_gain``, direction a random compass direction redrawn every
+  ``persistence`` s (Arkin's p, the persistence) — his "reactive grease" against local minima. The
+  direction is fixed in the world frame (a compass direction, as in Fig. 4.10D), so it does not turn
+  with the robot. Its gain falls with move-to-goal's within ``slow`` of the checkpoint (Arkin's
+  foraging robots reduce the noise "greatly upon encountering an attractor"), so that it can never hold
+  the robot off the goal.
+
+**Randomness and purity.** The noise schema's PRNG key lives in the controller state, seeded from
+``seed``; at each redraw the robot's pose (its float32 bits) is folded into the key. A run is therefore
+still a pure function of (world, controller, run seed) — same seed, same record — while runs with other
+seeds, whose motor noise has moved the robot elsewhere by the second draw, draw other directions.
+
+**The small-vector dead band.** ``velocity_to_wheels`` turns towards the vector's direction at a rate
+that does not fall with its length, so a vanishing sum pointing behind would spin the robot on the spot.
+A sum shorter than half a Khepera speed unit (4 mm/s, what rounds to a zero wheel speed anyway) is sent
+as no motion at all: at the goal, and where the schemas balance exactly, the robot stands still. (Where
+they balance, the motor lag carries it a millimetre or two on; the sum then points back, and this robot,
+which cannot reverse, turns on the spot: a balance on a convex obstacle straight ahead breaks by
+itself, one on a flat obstacle across the way does not — ``docs/scenarios.md``.)
+
+**The defaults, and why** (SI units: m/s, m, s; the measurements are in ``docs/scenarios.md``):
+
+- ``goal_gain`` 0.16 m/s: c*, the wheels' top speed — the EKM architectures' largest step, so every
+  architecture cruises alike;
+- ``slow`` 0.025 m: move-to-goal is linear within 2.5 cm, a gain of 6.4 /s, so one 0.128 s tick closes
+  0.82 of the remaining distance: the robot closes on a checkpoint without overshooting it (a gain of
+  more than 1/0.128 s would overshoot, more than 2/0.128 s never settle). 5 cm reached as often and
+  took 1–4 s longer per run in the rooms: the robot crawls up to every checkpoint;
+- ``influence`` S 0.05 m and ``margin`` R 0.01 m from the body surface: the planner puts checkpoints
+  2.8 cm from a doorway's wall end, so a wide sphere keeps pushing the robot round them: 8 cm reached as
+  often but took 1.7 times as long (and, with a stronger gain and a wider ``slow``, held it off the
+  checkpoints for good); 3 cm leaves too little room to turn at 2 cm a tick and it grazed walls. 5 cm
+  is also all the Khepera's short-range ring can see, so both rings feel the same law;
+- ``avoid_gain`` G 0.24 m/s = 1.5 × ``goal_gain``: a single point straight ahead balances move-to-goal
+  at g* = S − (S − R)/1.5 = 2.3 cm, outside the margin; 0.16 let the short-range ring graze doorway
+  edges that only one of its sparse rays sees;
+- ``margin_gain`` 1.0 m/s: Arkin's ∞, six times c*, more than move-to-goal and noise together;
+- ``marker_gain`` 0.24 m/s: the declared movers get the same law and gain as any sensed point (with
+  the long-range ring, 0.16 and 0.32 gave the same outcomes; no run touched the mover);
+- ``noise_gain`` 0.04 m/s (a quarter of move-to-goal) with ``persistence`` 2.048 s (16 ticks):
+  Arkin's "small amount of noise"; it frees the robot from a balance on a small obstacle straight across
+  its way, but not from the long wall or the U (three times as much noise gets round the wall in 5 of 10
+  runs and loses runs in the rooms).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import partial
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+
+from robots.controllers.base import Controller, Observation, sensor_angles, velocity_to_wheels
+from robots.params import KHEPERA, RobotParams
+
+
+@dataclass(frozen=True)
+class SchemaParams:
+    """Gains of the motor schemas (m/s at full strength), their distances (m) and the noise's persistence (s).
+    The defaults serve every world (``docs/scenarios.md``)."""
+
+    sensors: str = field(default="long", metadata={"help": "IR ring: long (12 around, 17.5 cm) or short "
+                                                           "(8 Khepera sensors, 5 cm)", "choices": ("short", "long")})
+    goal_gain: float = field(default=0.16, metadata={
+        "help": "move-to-goal: m/s far from the checkpoint (c*, the wheels' top speed)"})
+    slow: float = field(default=0.025, metadata={
+        "help": "move-to-goal: m from the checkpoint within which its magnitude falls linearly to 0"})
+    avoid_gain: float = field(default=0.24, metadata={
+        "help": "avoid-static-obstacle: G, m/s per sensed point at the safety margin (falls linearly to 0 at "
+                "the sphere of influence)"})
+    influence: float = field(default=0.05, metadata={
+        "help": "avoid-static-obstacle: S, the sphere of influence, m from the body surface"})
+    margin: float = field(default=0.01, metadata={
+        "help": "avoid-static-obstacle: R, the safety margin, m from the body surface (Arkin's obstacle radius)"})
+    margin_gain: float = field(default=1.0, metadata={
+        "help": "avoid-static-obstacle: m/s per point inside the safety margin (Arkin's infinity)"})
+    marker_gain: float = field(default=0.24, metadata={
+        "help": "avoid the declared moving obstacles: G, m/s at the safety margin (same law, same S and R)"})
+    noise_gain: float = field(default=0.04, metadata={"help": "noise: m/s of the random direction"})
+    persistence: float = field(default=2.048, metadata={
+        "help": "noise: s a random direction persists before the next is drawn (Arkin's p)"})
+    seed: int = field(default=0, metadata={"help": "noise: seed of the PRNG key"})
+
+    def __post_init__(self):
+        for name in ("goal_gain", "slow", "influence", "persistence"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
+        for name in ("avoid_gain", "margin", "margin_gain", "marker_gain", "noise_gain"):
+            if not getattr(self, name) >= 0:
+                raise ValueError(f"{name} must be >= 0, got {getattr(self, name)}")
+        if not self.margin < self.influence:
+            raise ValueError(f"margin must be < influence, got {self.margin} >= {self.influence}")
+
+
+class SchemaState(NamedTuple):
+    """The noise schema's state: its PRNG key, its current direction (rad, world frame) and when it is redrawn (s)."""
+
+    key: jax.Array
+    heading: jax.Array
+    due: jax.Array
+
+
+def init(p: SchemaParams) -> SchemaState:
+    """A fresh state: the first tick draws the first noise direction."""
+    return SchemaState(jax.random.PRNGKey(p.seed), jnp.zeros((), jnp.float32), jnp.asarray(-jnp.inf, jnp.float32))
+
+
+# ------------------------------------------------------------------------------------------ the schemas
+
+def polar(direction, magnitude):
+    """A vector ``(..., 2)`` from its direction (rad) and magnitude."""
+    return jnp.stack([magnitude * jnp.cos(direction), magnitude * jnp.sin(direction)], axis=-1)
+
+
+def move_to_goal(target, p: SchemaParams):
+    """Move-to-goal ``(2,)`` m/s, robot frame: towards u_p = (α, d), ``goal_gain · min(1, d / slow)`` long."""
+    return polar(target[0], p.goal_gain * jnp.minimum(1.0, target[1] / p.slow))
+
+
+def repulsion(gap, gain: float, p: SchemaParams):
+    """Arkin's avoid-static-obstacle magnitude (m/s) at ``gap`` m from the body surface: 0 beyond S, ``gain ·
+    (S − g) / (S − R)`` between, ``margin_gain`` within R; 0 for ``inf`` (nothing sensed)."""
+    linear = gain * (p.influence - gap) / (p.influence - p.margin)
+    return jnp.where(gap > p.influence, 0.0, jnp.where(gap > p.margin, linear, p.margin_gain))
+
+
+def avoid_static(readings, angles, p: SchemaParams):
+    """Avoid-static-obstacle summed over the IR hits ``(2,)`` m/s, robot frame: each sensed point at ``readings``
+    (m from the body surface; ``inf`` = nothing) along its sensor's direction ``angles`` pushes the robot
+    straight away from it."""
+    seen = jnp.isfinite(readings)
+    magnitude = jnp.where(seen, repulsion(jnp.where(seen, readings, jnp.inf), p.avoid_gain, p), 0.0)
+    return -jnp.sum(polar(angles, magnitude), axis=0)
+
+
+def avoid_markers(markers, pose, radius: float, p: SchemaParams):
+    """Avoid-static-obstacle for the declared moving obstacles ``(2,)`` m/s, robot frame, from their current
+    positions: ``markers`` ``(k, 5)`` rows (x, y, vx, vy, r), world frame; the gap is between the two bodies."""
+    rel = markers[:, :2] - pose[None, :2]
+    dist = jnp.sqrt(jnp.sum(jnp.square(rel), axis=1))
+    gap = dist - markers[:, 4] - radius
+    direction = jnp.arctan2(rel[:, 1], rel[:, 0]) - pose[2]
+    return -jnp.sum(polar(direction, repulsion(gap, p.marker_gain, p)), axis=0)
+
+
+def noise(state: SchemaState, obs: Observation, p: SchemaParams):
+    """The noise schema: the state with the direction redrawn if its persistence is up, and the vector ``(2,)``
+    m/s (robot frame), ``noise_gain`` long, its gain falling with move-to-goal's within ``slow`` of the checkpoint."""
+    redraw = obs.t >= state.due - 1e-3  # 1 ms: float32 time drifts by microseconds over a run
+    key = state.key
+    for bits in jax.lax.bitcast_convert_type(jnp.asarray(obs.pose, jnp.float32), jnp.uint32):
+        key = jax.random.fold_in(key, bits)
+    key, sub = jax.random.split(key)
+    heading = jnp.where(redraw, jax.random.uniform(sub, (), jnp.float32, -math.pi, math.pi), state.heading)
+    state = SchemaState(jnp.where(redraw, key, state.key), heading,
+                        jnp.where(redraw, obs.t + p.persistence, state.due).astype(jnp.float32))
+    fade = jnp.minimum(1.0, obs.target[1] / p.slow)
+    return state, polar(heading - obs.pose[2], p.noise_gain * fade)
+
+
+class Vectors(NamedTuple):
+    """One tick's schema outputs ``(2,)`` each (m/s, robot frame: x ahead, y left) and their sum."""
+
+    goal: jax.Array
+    avoid: jax.Array
+    markers: jax.Array
+    noise: jax.Array
+    total: jax.Array
+
+
+def schemas(state: SchemaState, obs: Observation, angles, p: SchemaParams,
+            radius: float) -> tuple[SchemaState, Vectors]:
+    """Every schema's vector for one tick and their sum (Arkin ch. 4.4.2: vector summation)."""
+    goal = move_to_goal(obs.target, p)
+    avoid = avoid_static(obs.ir, angles, p)
+    markers = avoid_markers(obs.markers, obs.pose, radius, p)
+    state, wander = noise(state, obs, p)
+    return state, Vectors(goal, avoid, markers, wander, goal + avoid + markers + wander)
+
+
+def to_wheels(total, robot: RobotParams = KHEPERA):
+    """The summed vector ``(2,)`` as wheel speeds: its magnitude clipped to c*, driven by ``velocity_to_wheels``;
+    shorter than half a speed unit it is no motion (see the module docstring)."""
+    length = jnp.sqrt(jnp.sum(jnp.square(total)))
+    moving = length >= 0.5 * robot.speed_unit
+    direction = jnp.where(moving, jnp.arctan2(total[1], total[0]), 0.0)
+    speed = jnp.where(moving, jnp.minimum(length, robot.max_wheel_speed), 0.0)
+    return velocity_to_wheels(direction, speed, robot)
+
+
+@partial(jax.jit, static_argnames=("p", "robot"))
+def step(state: SchemaState, obs: Observation, angles, *, p: SchemaParams, robot: RobotParams):
+    """One tick: every schema's vector, summed, clipped to c* and turned into wheel speeds."""
+    state, v = schemas(state, obs, angles, p, robot.radius)
+    return state, to_wheels(v.total, robot)
+
+
+def build(params: SchemaParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA, spec: str = "schema") -> Controller:
+    """Motor schemas on ``robot`` (they drive no EKM: ``ekm`` and ``cfg`` are None)."""
+    sensors = robot.short_range if params.sensors == "short" else robot.long_range
+    angles = jnp.asarray(sensor_angles(sensors))
+    run = partial(step, angles=angles, p=params, robot=robot)
+    return Controller(name="schema", spec=spec, sensors=sensors, init=partial(init, params), step=run,
+                      params=params, robot=robot)
