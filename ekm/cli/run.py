@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_float, nonneg_int, output_path, positive_float, print_json, show_progress
+from ekm.cli.args import nonneg_float, nonneg_int, output_path, positive_float, print_json, provenance, show_progress
 
 ARCHITECTURE_HELP = ("ARCH[:k=v,...], e.g. fields, fields:form=thesis, fusion:beta=0.6,sensors=long; "
                      "without parameters each runs its best documented variant")
@@ -109,7 +109,9 @@ def run(args) -> None:
         save_animation(rec, gif)
     out = rec.outcome()
     if args.json:
-        print_json(out)
+        from dataclasses import asdict
+
+        print_json({**out, "config": asdict(config), **provenance()})
         return
     status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
     drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
