@@ -1,6 +1,60 @@
 """Extended Kohonen Maps for learned sensorimotor control of a Khepera-like robot (Low 2002).
 
-``import ekm`` stays light: the command line (``ekm.cli``) imports the other packages inside its commands.
+Everything the ``ekm`` command line does, from Python (each command is a thin wrapper over one of these)::
+
+    import ekm
+    maps = ekm.load()                                   # the shipped indirect map, 5 trials
+    outcome = ekm.run(ekm.world("concave-obstacle"), architecture="fields", maps=maps, seed=1)
+    outcome.reached, outcome.time_s
+    outcome.save_plot("run.png")
+
+=====================================  ==========================  ==================================
+function                               returns                     command line
+=====================================  ==========================  ==================================
+``train(mapping=, steps=, ...)``       :class:`Maps`               ``ekm train``
+``resume(checkpoint)``                 :class:`Maps`               ``ekm train --resume``
+``load(path=None)``, ``Maps.save``     :class:`Maps`               (map files)
+``evaluate(maps, targets=, seed=)``    :class:`Metrics`            ``ekm evaluate``
+``world(name_or_path)``                ``World``                   (world files)
+``worlds(check=None)``                 :class:`Worlds`             ``ekm worlds``
+``plan(world, start, goal, ...)``      :class:`Plan`               ``ekm plan``
+``run(world, architecture, ...)``      :class:`Outcome`            ``ekm run``
+``compare(worlds, architectures)``     :class:`Table`              ``ekm compare``
+=====================================  ==========================  ==================================
+
+Each result is a frozen dataclass whose ``to_dict()`` is the command's ``--json`` output, with
+``plot()`` / ``save_plot(path)`` where a picture helps. Bad arguments raise :class:`InputError` with the
+line the command line prints. ``import ekm`` stays light: these names are imported on first use, and
+JAX and pymunk with them.
 """
 
 __version__ = "0.1.0"
+
+#: Public name -> the module of :mod:`ekm.api` (or :mod:`ekm.errors`) that holds it.
+_EXPORTS = {
+    "train": "ekm.api.training", "resume": "ekm.api.training",
+    "load": "ekm.api.mapset", "Maps": "ekm.api.mapset", "Map": "ekm.api.mapset",
+    "evaluate": "ekm.api.evaluation", "Metrics": "ekm.api.evaluation", "Evaluation": "ekm.api.evaluation",
+    "world": "ekm.api.worlds", "worlds": "ekm.api.worlds", "Worlds": "ekm.api.worlds",
+    "plan": "ekm.api.planning", "Plan": "ekm.api.planning",
+    "run": "ekm.api.driving", "Outcome": "ekm.api.driving",
+    "compare": "ekm.api.comparing", "Table": "ekm.api.comparing",
+    "InputError": "ekm.errors", "Interrupted": "ekm.errors",
+}
+
+__all__ = ["__version__", *_EXPORTS]
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'ekm' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # the next access is a plain attribute
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

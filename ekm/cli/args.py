@@ -8,7 +8,11 @@ import json
 import math
 import sys
 
-from ekm.errors import InputError
+from ekm.api.checks import invalid_choice, output_path, sign_problem
+from ekm.provenance import provenance
+
+__all__ = ["finite_float", "nonneg_float", "nonneg_int", "one_of", "output_path", "positive_float", "positive_int",
+           "print_json", "provenance", "show_progress", "xy_point"]
 
 
 def _whole_number(text: str) -> int:
@@ -33,8 +37,9 @@ def _signed(parse, *, strict: bool):
 
     def check(text: str):
         value = parse(text)
-        if value < 0 or (strict and value == 0):
-            raise argparse.ArgumentTypeError(f"must be {'>' if strict else '>='} 0, got {text}")
+        problem = sign_problem(value, strict, shown=text)
+        if problem:
+            raise argparse.ArgumentTypeError(problem)
         return value
 
     return check
@@ -57,40 +62,16 @@ def xy_point(text: str) -> tuple[float, float]:
         raise argparse.ArgumentTypeError(f"must be X,Y in metres (e.g. 0.1,0.3), got {text!r}") from None
 
 
-def output_path(text: str, option: str, suffix: str):
-    """Check an output path before long work starts: not a directory, the right suffix, a directory
-    that exists (it is created) and can be written."""
-    import os
-    from pathlib import Path
+def one_of(choices):
+    """An argparse type for one of ``choices``, worded as :func:`ekm.api.checks.choice` words it (the API
+    checks the same value; give the option ``metavar="{a,b}"`` for the help)."""
 
-    path = Path(text)
-    if path.is_dir():
-        raise InputError(f"{option} {text}: is a directory, expected a {suffix} file")
-    if path.suffix.lower() != suffix:
-        raise InputError(f"{option} {text}: expected a file name ending in {suffix}")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"{option} {text}: cannot create its directory ({exc.strerror or exc})") from None
-    if not os.access(path.parent, os.W_OK):
-        raise InputError(f"{option} {text}: its directory is not writable")
-    return path
+    def check(text: str) -> str:
+        if text not in choices:
+            raise argparse.ArgumentTypeError(invalid_choice(text, choices))
+        return text
 
-
-def provenance(jax: bool = True) -> dict:
-    """What made a ``--json`` result, for reproducing it later: the package's version and, where JAX
-    computed it, JAX's (read from the installed metadata, without importing JAX)."""
-    from importlib.metadata import PackageNotFoundError, version
-
-    from ekm import __version__
-
-    out = {"ekm_version": __version__}
-    if jax:
-        try:
-            out["jax_version"] = version("jax")
-        except PackageNotFoundError:
-            out["jax_version"] = None
-    return out
+    return check
 
 
 def print_json(obj) -> None:

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import os
 
-from ekm.cli.args import nonneg_int, output_path, positive_float, positive_int, print_json, provenance, show_progress
-from ekm.errors import InputError
+from ekm.cli.args import nonneg_int, output_path, positive_float, positive_int, print_json, show_progress
 
 
 def add_parser(sub) -> None:
@@ -31,99 +30,25 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run)
 
 
-def resolve(args):
-    """Worlds, architectures, map and config, every one checked before any run starts."""
-    from ekm.mapfile import load_maps
-    from evaluation.scenario import ScenarioConfig
-    from robots.controllers.spec import parse_architectures
-    from robots.worldfile import load_world
-
-    worlds = [w.strip() for w in args.worlds.split(",")]
-    if not all(worlds):
-        raise InputError(f"--worlds {args.worlds!r}: empty item between commas")
-    if len(set(worlds)) != len(worlds):
-        raise InputError(f"--worlds {args.worlds!r}: a world is named twice")
-    for w in worlds:
-        load_world(w)
-    specs = parse_architectures(args.architectures)
-    labels = [s.label for s in specs]
-    if len(set(labels)) != len(labels):
-        raise InputError(f"--architectures {args.architectures!r}: an architecture is named twice")
-    if args.map:
-        load_maps(args.map)
-    return worlds, specs, ScenarioConfig(time_limit=args.time_limit, recover=args.recover)
-
-
-def executor_for(args):
-    """The executor the runs go to: a Dask cluster's (``--scheduler``) or a local process pool."""
-    if args.scheduler:
-        try:
-            from distributed import Client
-        except ImportError:
-            raise InputError("--scheduler: Dask is not installed; pip install 'ekm[cluster]'") from None
-        try:
-            client = Client(args.scheduler, timeout="10s")
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(f"--scheduler {args.scheduler}: cannot connect ({exc.__class__.__name__}: {exc})") from None
-        return client.get_executor(pure=False), client
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    workers = args.workers or os.cpu_count() or 1
-    # spawn, not fork: a forked JAX process can deadlock
-    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")), None
-
-
 def run(args) -> None:
-    """Compare architectures over worlds and trials; print the table or the JSON, draw the plot."""
-    import time
-
-    from evaluation.compare import compare, jobs, summarize
+    """Compare architectures over worlds and trials (:func:`ekm.compare`); print the table or the JSON, draw
+    the plot."""
+    from ekm.api.comparing import compare
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
-    worlds, specs, config = resolve(args)
-    job_list = jobs(worlds, specs, args.trials, args.seed, config, args.map, keep_paths=plot is not None)
-    labels = [s.label for s in specs]
-    bar, on_done = None, None
-    if show_progress(args):
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(job_list), unit="run", desc="comparing", dynamic_ncols=True)
-
-        def on_done(record):
-            bar.update(1)
-
-    executor, client = executor_for(args)
-    t0 = time.perf_counter()
-    try:
-        records = compare(job_list, executor, on_done)
-    finally:
-        if bar is not None:
-            bar.close()
-        executor.shutdown(wait=True) if client is None else client.close()
-    seconds = time.perf_counter() - t0
-    rows = summarize(records, worlds, labels)
+    table = compare(args.worlds, args.architectures, trials=args.trials, seed=args.seed, maps=args.map,
+                    recover=args.recover, time_limit=args.time_limit, workers=args.workers, scheduler=args.scheduler,
+                    progress=show_progress(args))
     if plot:
-        from evaluation.compare_plot import save_comparison
-
-        save_comparison(rows, records, worlds, labels, plot)
-    where = f"Dask at {args.scheduler}" if args.scheduler else f"{args.workers or os.cpu_count()} local workers"
+        table.save_plot(plot)
     if args.json:
-        print_json({"results": [{k: v for k, v in r.items() if k != "runs_by_trial"} for r in rows],
-                    "trials": args.trials, "seed": args.seed, "seconds": round(seconds, 2), "runs": len(records),
-                    "workers": where, "config": config_dict(config), **provenance()})
+        print_json(table.to_dict())
         return
-    print(f"{len(records)} runs ({len(labels)} architectures x {len(worlds)} worlds x {args.trials} trials, seeds "
-          f"{args.seed}..{args.seed + args.trials - 1}) in {seconds:.0f} s on {where}")
-    print_table(rows)
+    print(f"{len(table.records)} runs ({len(table.labels)} architectures x {len(table.worlds)} worlds x {args.trials} "
+          f"trials, seeds {args.seed}..{args.seed + args.trials - 1}) in {table.seconds:.0f} s on {table.workers}")
+    print_table(table.rows)
     if plot:
         print(f"plot written to {plot}")
-
-
-def config_dict(config) -> dict:
-    from dataclasses import asdict
-
-    return asdict(config)
 
 
 def print_table(rows) -> None:

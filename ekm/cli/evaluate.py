@@ -3,8 +3,8 @@ paths for them)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_int, output_path, positive_int, print_json, provenance
-from ekm.cli.summary import print_summary, summarize_test
+from ekm.cli.args import nonneg_int, output_path, positive_int, print_json
+from ekm.cli.summary import print_summary
 
 
 def add_parser(sub) -> None:
@@ -19,54 +19,22 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> None:
-    """Run the ch. 6.1 test on saved maps (and draw Fig. 6.1/6.2 for them)."""
-    from pathlib import Path
-
-    import numpy as np
-
-    from ekm.mapfile import load_maps
+    """Run the ch. 6.1 test on saved maps (:func:`ekm.evaluate`; and draw Fig. 6.1/6.2 for them)."""
+    from ekm.api.evaluation import Evaluation, evaluate
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
     paths = output_path(args.paths, "--paths", ".png") if args.paths else None
-    loaded = [load_maps(path) for path in args.maps]
-    results = []
-    for path, saved in zip(args.maps, loaded):
-        s = summarize_test(saved.ekm, saved.cfg, saved.arena, args.targets, args.seed)
-        results.append({"file": path, "mapping": saved.cfg.mapping, **s, "ekm": saved.cfg.to_dict(),
-                        "trained": {k: saved.meta.get(k) for k in ("seed", "steps", "package_version", "jax_version")}})
+    result = evaluate(args.maps if len(args.maps) > 1 else args.maps[0], targets=args.targets, seed=args.seed)
+    every = result if isinstance(result, Evaluation) else Evaluation((result,))
     if plot:
-        from evaluation.plots import save_figure_6_1_6_2
-
-        save_figure_6_1_6_2([{"label": f"{r['mapping']} ({Path(r['file']).name})", "curve": list(saved.curve),
-                              "summary": r, "w": np.asarray(saved.ekm.w[0])} for r, saved in zip(results, loaded)],
-                            plot)
+        every.save_plot(plot)
     if paths:
-        _save_paths(args.maps, loaded, args.targets, args.seed, paths)
+        every.save_paths(paths)
     if args.json:
-        keys = ("E_mm", "P", "T", "D", "trials", "targets", "capped")
-        about = ("file", "mapping", "ekm", "trained")
-        test = {"seed": args.seed, **provenance()}
-        print_json({**{k: results[0][k] for k in keys + about}, **test} if len(results) == 1
-                   else {"maps": [{k: r[k] for k in about[:2] + keys + about[2:]} for r in results], **test})
+        print_json(result.to_dict())
         return
-    for r in results:
-        print_summary(r, f"{r['file']} ({r['mapping']})")
+    for m in every.items:
+        print_summary(m.to_dict(), f"{m.file} ({m.mapping})")
     for out in (plot, paths):
         if out:
             print(f"plot written to {out}")
-
-
-def _save_paths(files, loaded, targets: int, seed: int, out) -> None:
-    """``ekm evaluate --paths``: the first trial's paths in the same test, one panel per map."""
-    from pathlib import Path
-
-    from evaluation.metrics import summarize
-    from evaluation.plots import save_paths_figure
-    from evaluation.protocol import trace_paths
-
-    panels = []
-    for path, saved in zip(files, loaded):
-        pts, start, xy, rec = trace_paths(saved.ekm, saved.cfg, saved.arena, targets=targets, seed=seed)
-        panels.append({"label": f"{saved.cfg.mapping} ({Path(path).name}, trial 1)", "targets": pts, "start": start,
-                       "xy": xy, "summary": summarize(rec)})
-    save_paths_figure(panels, loaded[0].arena, out)

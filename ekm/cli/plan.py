@@ -3,7 +3,8 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_float, positive_float, print_json, provenance, xy_point
+from ekm.api.planning import METHODS
+from ekm.cli.args import nonneg_float, one_of, positive_float, print_json, xy_point
 
 
 def add_parser(sub) -> None:
@@ -12,7 +13,7 @@ def add_parser(sub) -> None:
     p.add_argument("--start", type=xy_point, metavar="X,Y", help="start in metres (default: the world's)")
     p.add_argument("--goal", type=xy_point, metavar="X,Y", help="goal in metres (default: the world's)")
     p.add_argument("--cell", type=positive_float, metavar="M", help="bitmap cell size in metres (default 0.02)")
-    p.add_argument("--method", choices=("slippery", "quadtree", "grid"), default="slippery",
+    p.add_argument("--method", type=one_of(METHODS), default="slippery", metavar="{" + ",".join(METHODS) + "}",
                    help="cell decomposition (default slippery)")
     p.add_argument("--at", type=nonneg_float, default=0.0, metavar="SECONDS",
                    help="plan on the map known at this time (after the known events so far; default 0)")
@@ -22,27 +23,17 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> None:
-    """Plan checkpoints through a world with slippery cells or a baseline decomposition (thesis ch. 3)."""
-    import time
+    """Plan checkpoints through a world with slippery cells or a baseline decomposition (thesis ch. 3;
+    :func:`ekm.plan`)."""
+    from ekm.api.planning import plan
 
-    from planner import DEFAULT_CELL, plan
-    from robots.worldfile import load_world
-
-    world = load_world(args.world)
-    t0 = time.perf_counter()
-    p = plan(world, args.start, args.goal, cell=args.cell or DEFAULT_CELL, method=args.method, t=args.at)
-    seconds = time.perf_counter() - t0
+    result = plan(args.world, args.start, args.goal, cell=args.cell, method=args.method, at=args.at)
+    p, world, seconds = result.plan, result.world, result.seconds
     route = " -> ".join(map(str, p.route[:12])) + (f" -> ... ({len(p.route)} cells)" if len(p.route) > 12 else "")
     if args.plot:
-        from planner.plot import save_plan
-
-        title = f"{world.name} at t = {args.at:g} s: {p.method}, {p.cells} cells, {len(p.graph.edges)} arcs"
-        save_plan(args.plot, p, world, args.at, title=title)
+        result.save_plot(args.plot)
     if args.json:
-        print_json({"method": p.method, "cells": p.cells, "graph_edges": len(p.graph.edges),
-                    "path_cells": list(p.route), "checkpoints": p.checkpoints.round(6).tolist(),
-                    "seconds": round(seconds, 6), "world": world.name, "cell": p.cell, "at": args.at,
-                    **provenance(jax=False)})
+        print_json(result.to_dict())
         return
     ny, nx = p.bitmap.shape
     print(f"{world.name} at t = {args.at:g} s: {p.method} decomposition of a {nx} x {ny} bitmap "

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_float, nonneg_int, output_path, positive_float, print_json, provenance, show_progress
+from ekm.api.driving import SENSORS
+from ekm.cli.args import nonneg_float, nonneg_int, one_of, output_path, positive_float, print_json, show_progress
 
 ARCHITECTURE_HELP = ("ARCH[:k=v,...], e.g. fields, fields:form=thesis, fusion:beta=0.6,sensors=long; "
                      "without parameters each runs its best documented variant")
@@ -12,7 +13,7 @@ def add_parser(sub) -> None:
     p = sub.add_parser("run", help="drive the robot through a world: planner + architecture, one seed")
     p.add_argument("--world", required=True, metavar="W", help="named world or world file")
     p.add_argument("--architecture", required=True, metavar="ARCH", help=ARCHITECTURE_HELP)
-    p.add_argument("--sensors", choices=("short", "long"),
+    p.add_argument("--sensors", type=one_of(SENSORS), metavar="{" + ",".join(SENSORS) + "}",
                    help="IR ring, overriding the architecture's (short: 8 Khepera sensors, 5 cm; long: 12, 17.5 cm)")
     p.add_argument("--recover", action="store_true",
                    help="when trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1)")
@@ -30,92 +31,42 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run)
 
 
-def resolve(args):
-    """World, architecture spec, maps, their source and the scenario config from the arguments — every check
-    before any run."""
-    from ekm.data import load_default_map
-    from ekm.errors import InputError
-    from ekm.mapfile import load_maps
-    from robots.controllers.spec import parse_architecture
-    from robots.worldfile import load_world
-
-    world = load_world(args.world)
-    spec = parse_architecture(args.architecture)
-    if args.sensors:
-        spec = spec.with_params(sensors=args.sensors)
-    if not spec.uses_map:
-        if args.map or args.trial is not None:
-            raise InputError(f"--map/--trial: architecture {spec.name} drives no map")
-        return world, spec, None, "", config_from(args)
-    if args.map:
-        maps, source = load_maps(args.map), args.map
-    else:
-        maps, source = load_default_map(spec.default_chart), f"shipped {spec.default_chart}-chart map"
-    if args.trial is not None and args.trial >= maps.trials:
-        raise InputError(f"--trial {args.trial}: the map file holds trials 0..{maps.trials - 1}")
-    return world, spec, maps, source, config_from(args)
-
-
-def config_from(args):
-    """The :class:`~evaluation.scenario.ScenarioConfig` of the arguments."""
-    from evaluation.scenario import ScenarioConfig
-
-    return ScenarioConfig(time_limit=args.time_limit, recover=args.recover)
-
-
 def run(args) -> None:
-    """Drive the robot through a world with one architecture and report the outcome (DESIGN §6)."""
-    from evaluation.scenario import run_architecture
+    """Drive the robot through a world with one architecture and report the outcome (DESIGN §6;
+    :func:`ekm.run`)."""
+    from ekm.api.driving import run as drive
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
-    world, spec, maps, source, config = resolve(args)
     if args.maps_at is not None:
         from ekm.errors import InputError
+        from robots.controllers.spec import parse_architecture
 
-        if spec.name != "samba":
-            raise InputError(f"--maps-at: architecture {spec.name} has no action maps (only samba has)")
+        name = parse_architecture(args.architecture).name
+        if name != "samba":
+            raise InputError(f"--maps-at: architecture {name} has no action maps (only samba has)")
         if not plot:
             raise InputError("--maps-at: needs --plot PNG to draw the maps on")
-    bar, on_tick = None, None
-    if show_progress(args):
-        from tqdm import tqdm
-
-        bar = tqdm(total=round(config.time_limit, 1), unit="sim s", desc=f"{spec.label} in {world.name}",
-                   dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}]")
-
-        def on_tick(t):
-            bar.update(round(t, 3) - bar.n)
-
-    try:
-        rec = run_architecture(world, spec, maps, seed=args.seed, trial=args.trial if spec.uses_map else None,
-                               config=config, on_tick=on_tick, source=source)
-    finally:
-        if bar is not None:
-            bar.close()
+    outcome = drive(args.world, args.architecture, maps=args.map, trial=args.trial, sensors=args.sensors,
+                    recover=args.recover, seed=args.seed, time_limit=args.time_limit, progress=show_progress(args))
+    rec, spec = outcome.record, outcome.spec
     if plot and args.maps_at is not None:  # the same run again, recording the tick nearest T (a run is pure)
         from evaluation.actionmap_plot import record_tick, save_run_with_maps
 
-        again, moment = record_tick(world, spec, args.maps_at, seed=args.seed, config=config)
+        again, moment = record_tick(rec.world, spec, args.maps_at, seed=args.seed, config=outcome.config)
         again.map_source, again.trial = rec.map_source, rec.trial
         save_run_with_maps(again, moment, plot)
     elif plot:
-        from evaluation.scenario_plot import save_run
-
-        save_run(rec, plot)
+        outcome.save_plot(plot)
     if gif:
-        from evaluation.scenario_plot import save_animation
-
-        save_animation(rec, gif)
-    out = rec.outcome()
+        outcome.save_animation(gif)
     if args.json:
-        from dataclasses import asdict
-
-        print_json({**out, "config": asdict(config), **provenance()})
+        print_json(outcome.to_dict())
         return
+    out = outcome.to_dict()
     status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
     drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
-    print(f"{world.name}: {spec} (seed {args.seed}{drives})")
+    print(f"{rec.world.name}: {spec} (seed {args.seed}{drives})")
     print(f"  {status}: {out['ended']} after {out['time_s']:.1f} s, path {out['path_m']:.2f} m, "
           f"{out['collisions']} collisions, final distance {1000 * out['final_distance_m']:.1f} mm")
     print(f"  checkpoints reached {out['checkpoints_reached']}, replans {out['replans']}, recoveries {out['recoveries']}")

@@ -1,15 +1,7 @@
-"""The ch. 6.1 test summary shared by ``ekm train`` and ``ekm evaluate``: run it on stacked maps, and
-print it as a table of P, T and D over ε."""
+"""The ch. 6.1 test summary shared by ``ekm train`` and ``ekm evaluate``, printed as a table of P, T and D
+over ε (the test itself: :func:`ekm.api.evaluation.summarize_test`)."""
 
 from __future__ import annotations
-
-
-def summarize_test(maps, cfg, arena, targets: int, seed: int) -> dict:
-    """The ch. 6.1 test of stacked maps, summarised (E, P, T, D, capped)."""
-    from evaluation.metrics import summarize
-    from evaluation.protocol import evaluate
-
-    return summarize(evaluate(maps, cfg, arena, targets=targets, seed=seed))
 
 
 def print_summary(s: dict, label: str) -> None:

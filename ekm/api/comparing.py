@@ -1,0 +1,189 @@
+"""Comparing architectures in Python: :func:`compare` (``ekm compare``) and its :class:`Table`."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from ekm.api.checks import number, whole
+from ekm.api.result import Result
+from ekm.errors import InputError
+
+_PROG = "ekm compare"
+
+
+@dataclass(frozen=True)
+class Table(Result):
+    """A comparison: ``rows``, one per architecture and world (architectures in the order given, worlds
+    within each), each a dict with ``world``, ``architecture``, ``trials``, ``success_rate`` and its 95 %
+    Wilson interval ``success_ci95``, ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
+    ``trapped`` and ``runs_by_trial`` (a letter per trial); ``seconds`` the wall time and ``workers`` where
+    the runs went. ``to_dict()`` is ``ekm compare --json``; ``plot()`` draws the success rates with
+    their intervals and the first trial's path in each world.
+    """
+
+    rows: tuple
+    worlds: tuple
+    labels: tuple
+    trials: int
+    seed: int
+    seconds: float
+    workers: str
+    config: object = field(repr=False)
+    records: tuple = field(repr=False, compare=False, default=())
+
+    def _dict(self) -> dict:
+        from ekm.provenance import provenance
+
+        return {"results": [{k: v for k, v in r.items() if k != "runs_by_trial"} for r in self.rows],
+                "trials": self.trials, "seed": self.seed, "seconds": round(self.seconds, 2), "runs": len(self.records),
+                "workers": self.workers, "config": asdict(self.config), **provenance()}
+
+    def plot(self):
+        """Success rates with their 95 % intervals, and one path per architecture and world; returns the
+        matplotlib Figure."""
+        from evaluation.compare_plot import comparison_figure
+
+        return comparison_figure(list(self.rows), list(self.records), list(self.worlds), list(self.labels))
+
+    def save_plot(self, path) -> Path:
+        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import output_path
+        from robots.plot import save_figure
+
+        out = output_path(path, "--plot", ".png")
+        save_figure(self.plot(), out, dpi=110)
+        return out
+
+
+def _names(items, option: str) -> tuple[str, list[str]]:
+    """``(spelling, names)`` of ``--worlds``: a comma-separated string or a list of names, paths or worlds."""
+    if isinstance(items, (str, Path)):
+        text = str(items)
+        names = [w.strip() for w in text.split(",")]
+    else:
+        names = [str(getattr(w, "source", w)) for w in items]
+        text = ",".join(names)
+    if not all(names):
+        raise InputError(f"{option} {text!r}: empty item between commas")
+    if len(set(names)) != len(names):
+        raise InputError(f"{option} {text!r}: a world is named twice")
+    return text, names
+
+
+def compare(worlds, architectures, *, trials: int = 10, seed: int = 0, maps=None, recover: bool = False,
+            time_limit: float = 120.0, workers: int | None = None, scheduler: str | None = None,
+            progress: bool = False) -> Table:
+    """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
+    intervals (thesis ch. 6.2 at scale). Trial i runs with seed ``seed + i`` for every architecture and
+    world (the same noise for all of them), so the result does not depend on ``workers`` or ``scheduler``.
+
+    Parameters
+    ----------
+    worlds : list of str or World, or "W1,W2,..."
+        Named worlds or world files.
+    architectures : list of str, or "A1[:k=v,...],A2,..."
+        As :func:`ekm.run` spells them.
+    trials : int, default 10
+        Runs per architecture and world.
+    seed : int, default 0
+        Trial i runs with seed ``seed + i``.
+    maps : path or Maps saved to a file, optional
+        Map for the EKM architectures (default: their shipped maps); the workers read the file.
+    recover : bool, default False
+        Cognizant-failure recovery on (thesis 7.1.1).
+    time_limit : float, default 120
+        Simulated seconds per run.
+    workers : int, optional
+        Local worker processes (default: the machine's cores).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://host:8786``; needs ``ekm[cluster]``) to send the runs to.
+    progress : bool, default False
+        Show a progress bar (runs done) on stderr.
+
+    Returns :class:`Table`, whose ``to_dict()`` is ``ekm compare --json`` for the same arguments (but for
+    ``seconds``, the wall time).
+
+    Example::
+
+        t = ekm.compare(["open-arena", "concave-obstacle"], ["fusion", "fields"], trials=2, time_limit=40)
+        [(r["architecture"], r["world"], r["success_rate"]) for r in t.rows]
+    """
+    import time
+
+    from ekm.api.worlds import world as load_world
+    from evaluation.compare import compare as run_all, jobs, summarize
+    from evaluation.scenario import ScenarioConfig
+    from robots.controllers.spec import parse_architectures
+
+    trials = whole(trials, "--trials", _PROG, strict=True)
+    seed = whole(seed, "--seed", _PROG, strict=False)
+    time_limit = number(time_limit, "--time-limit", _PROG, strict=True)
+    if workers is not None:
+        workers = whole(workers, "--workers", _PROG, strict=True)
+    _, names = _names(worlds, "--worlds")
+    for w in names:
+        load_world(w)
+    text = architectures if isinstance(architectures, str) else ",".join(architectures)
+    specs = parse_architectures(text)
+    labels = [s.label for s in specs]
+    if len(set(labels)) != len(labels):
+        raise InputError(f"--architectures {text!r}: an architecture is named twice")
+    map_path = _map_path(maps)
+    config = ScenarioConfig(time_limit=time_limit, recover=bool(recover))
+    job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True)
+    bar, on_done = None, None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(job_list), unit="run", desc="comparing", dynamic_ncols=True)
+
+        def on_done(record):
+            bar.update(1)
+
+    executor, client = _executor(workers, scheduler)
+    t0 = time.perf_counter()
+    try:
+        records = run_all(job_list, executor, on_done)
+    finally:
+        if bar is not None:
+            bar.close()
+        executor.shutdown(wait=True) if client is None else client.close()
+    seconds = time.perf_counter() - t0
+    where = f"Dask at {scheduler}" if scheduler else f"{workers or os.cpu_count()} local workers"
+    return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
+                 trials=trials, seed=seed, seconds=seconds, workers=where, config=config, records=tuple(records))
+
+
+def _map_path(maps) -> str | None:
+    """The map file the workers read: ``maps`` itself, or the file a :class:`ekm.Maps` came from (checked)."""
+    from ekm.api.mapset import Maps, load
+
+    if maps is None:
+        return None
+    if isinstance(maps, Maps):
+        if maps.path is None:
+            raise InputError("maps: ekm.compare sends the workers a map file; save the maps first (maps.save(PATH))")
+        return maps.path
+    load(maps)
+    return str(maps)
+
+
+def _executor(workers: int | None, scheduler: str | None):
+    """The executor the runs go to: a Dask cluster's (``scheduler``) or a local process pool."""
+    if scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise InputError("--scheduler: Dask is not installed; pip install 'ekm[cluster]'") from None
+        try:
+            client = Client(scheduler, timeout="10s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"--scheduler {scheduler}: cannot connect ({exc.__class__.__name__}: {exc})") from None
+        return client.get_executor(pure=False), client
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    # spawn, not fork: a forked JAX process can deadlock
+    return ProcessPoolExecutor(workers or os.cpu_count() or 1, mp_context=multiprocessing.get_context("spawn")), None

@@ -1,0 +1,156 @@
+"""Driving through a world in Python: :func:`run` (thesis ch. 6.2, ``ekm run``) and its :class:`Outcome`."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields
+from pathlib import Path
+
+from ekm.api.checks import choice, number, whole
+from ekm.api.result import Result
+from ekm.errors import InputError
+
+_PROG = "ekm run"
+SENSORS = ("short", "long")
+
+
+@dataclass(frozen=True)
+class Outcome(Result):
+    """How one run went (DESIGN §6): ``reached`` the goal (within 5 mm and without a collision), after
+    ``time_s`` simulated seconds along ``path_m`` metres, with ``collisions`` new contacts,
+    ``checkpoints_reached``, ``replans``, ``trapped`` (the monitor saw no progress), ``final_distance_m``
+    to the goal; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
+    stopped), ``seed``, ``map`` and ``trial`` (which map drove; None for architectures without one),
+    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`). ``record`` holds the traces (poses every
+    sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws the run
+    to scale (Fig. 6.3–6.8).
+    """
+
+    world: str
+    architecture: str
+    reached: bool
+    time_s: float
+    path_m: float
+    collisions: int
+    checkpoints_reached: int
+    replans: int
+    trapped: bool
+    final_distance_m: float
+    arrived: bool
+    recoveries: int
+    ended: str
+    seed: int
+    map: str | None
+    trial: int | None
+    config: object = field(repr=False)
+    record: object = field(repr=False, compare=False)
+    spec: object = field(repr=False, compare=False)
+
+    def _dict(self) -> dict:
+        from ekm.provenance import provenance
+
+        outcome = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("config", "record", "spec")}
+        return {**outcome, "config": asdict(self.config), **provenance()}
+
+    def plot(self, ax=None):
+        """The run to scale on ``ax`` (a new figure sized to the arena if None): world, path coloured by
+        time, robot outlines, plans and checkpoints, collisions and traps. Returns the axes."""
+        from evaluation.scenario_plot import draw_run
+
+        return draw_run(ax, self.record)
+
+    def save_plot(self, path) -> Path:
+        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import output_path
+        from evaluation.scenario_plot import save_run
+
+        return save_run(self.record, output_path(path, "--plot", ".png"))
+
+    def save_animation(self, path) -> Path:
+        """The run animated, to a GIF at ``path``; returns the path."""
+        from ekm.api.checks import output_path
+        from evaluation.scenario_plot import save_animation
+
+        out = output_path(path, "--gif", ".gif")
+        save_animation(self.record, out)
+        return out
+
+
+def run(world, architecture: str, *, maps=None, trial: int | None = None, sensors: str | None = None,
+        recover: bool = False, seed: int = 0, time_limit: float = 120.0, progress: bool = False) -> Outcome:
+    """Drive the simulated robot from the world's start to its goal: the slippery-cell planner's
+    checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; DESIGN §5).
+
+    Parameters
+    ----------
+    world : str or World
+        A named world, a world file (:func:`ekm.world`) or a loaded world.
+    architecture : str
+        ``"fusion"``, ``"fields"``, ``"samba"`` or ``"schema"``, optionally with parameters:
+        ``"fields:form=thesis"``, ``"fusion:beta=0.6,sensors=long"``; without them each runs its best
+        documented variant.
+    maps : Maps, Map, or path, optional
+        The indirect map the EKM architectures drive (default: the shipped map of the architecture's
+        chart). A :class:`Map` (``maps[i]``) drives that trial.
+    trial : int, optional
+        Which trial of ``maps`` drives (default: ``seed % trials``).
+    sensors : {"short", "long"}, optional
+        IR ring, overriding the architecture's (short: 8 Khepera sensors, 5 cm; long: 12, 17.5 cm).
+    recover : bool, default False
+        When trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1).
+    seed : int, default 0
+        Noise seed of the run; the same seed gives the same run.
+    time_limit : float, default 120
+        Simulated seconds before the run is given up.
+    progress : bool, default False
+        Show a progress bar in simulated seconds on stderr.
+
+    Returns :class:`Outcome`, whose ``to_dict()`` is ``ekm run --json`` for the same arguments.
+
+    Example::
+
+        out = ekm.run("concave-obstacle", architecture="fields", seed=1)
+        out.reached, out.time_s
+    """
+    from ekm.api.mapset import Map, load
+    from ekm.api.worlds import world as load_world
+    from evaluation.scenario import ScenarioConfig, run_architecture
+    from robots.controllers.spec import parse_architecture
+
+    if sensors is not None:
+        choice(sensors, SENSORS, "--sensors", _PROG)
+    seed = whole(seed, "--seed", _PROG, strict=False)
+    time_limit = number(time_limit, "--time-limit", _PROG, strict=True)
+    if isinstance(maps, Map):
+        if trial is not None and trial != maps.trial:
+            raise InputError(f"--trial {trial}: the map given is trial {maps.trial}")
+        maps, trial = maps.maps, maps.trial
+    if trial is not None:
+        trial = whole(trial, "--trial", _PROG, strict=False)
+    w = load_world(world)
+    spec = parse_architecture(architecture)
+    if sensors:
+        spec = spec.with_params(sensors=sensors)
+    if not spec.uses_map and (maps is not None or trial is not None):
+        raise InputError(f"--map/--trial: architecture {spec.name} drives no map")
+    if spec.uses_map:
+        maps = load(maps, chart=spec.default_chart)
+        if trial is not None and trial >= maps.trials:
+            raise InputError(f"--trial {trial}: the map file holds trials 0..{maps.trials - 1}")
+    config = ScenarioConfig(time_limit=time_limit, recover=bool(recover))
+    bar, on_tick = None, None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=round(config.time_limit, 1), unit="sim s", desc=f"{spec.label} in {w.name}",
+                   dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}]")
+
+        def on_tick(t):
+            bar.update(round(t, 3) - bar.n)
+
+    try:
+        rec = run_architecture(w, spec, maps, seed=seed, trial=trial if spec.uses_map else None, config=config,
+                               on_tick=on_tick, source=maps.source if maps is not None else "")
+    finally:
+        if bar is not None:
+            bar.close()
+    return Outcome(**rec.outcome(), config=config, record=rec, spec=spec)
