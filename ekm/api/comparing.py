@@ -96,7 +96,9 @@ def compare(worlds, architectures, *, trials: int = 10, seed: int = 0, maps=None
     time_limit : float, default 120
         Simulated seconds per run.
     workers : int, optional
-        Local worker processes (default: the machine's cores).
+        Local worker processes (default: the machine's cores; 1 runs in this process). Worker processes
+        are spawned, so a script that calls :func:`compare` with several needs the usual
+        ``if __name__ == "__main__":`` guard (a notebook does not).
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:8786``; needs ``ekm[cluster]``) to send the runs to.
     progress : bool, default False
@@ -182,8 +184,21 @@ def _executor(workers: int | None, scheduler: str | None):
         except (OSError, TimeoutError, ValueError) as exc:
             raise InputError(f"--scheduler {scheduler}: cannot connect ({exc.__class__.__name__}: {exc})") from None
         return client.get_executor(pure=False), client
+    workers = workers or os.cpu_count() or 1
+    if workers == 1:  # one worker: this process (the same runs, as each is a pure function of its job)
+        return _InProcess(), None
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
     # spawn, not fork: a forked JAX process can deadlock
-    return ProcessPoolExecutor(workers or os.cpu_count() or 1, mp_context=multiprocessing.get_context("spawn")), None
+    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")), None
+
+
+class _InProcess:
+    """The executor of one local worker: :func:`evaluation.compare.compare` runs the jobs here."""
+
+    def map(self, fn, items):
+        return map(fn, items)
+
+    def shutdown(self, wait: bool = True) -> None:
+        pass
