@@ -173,8 +173,8 @@ class PymunkWorld:
     @property
     def pose(self) -> np.ndarray:
         """Robot pose ``(3,)`` = (x, y, θ), θ wrapped to (-π, π] (as in :mod:`robots.kinematics`)."""
-        b = self._body
-        return np.array([b.position.x, b.position.y, kinematics.wrap_angle(b.angle)])
+        x, y = self._body.position
+        return np.array([x, y, _wrap(self._body.angle)])
 
     @property
     def state(self) -> RobotState:
@@ -232,22 +232,28 @@ class PymunkWorld:
         setpoint = kinematics.quantize_command(command, self.params)
         v, omega, self.wheels = kinematics.motor_twist(self.wheels, setpoint, noise, n, self.params)
         trace = np.empty((n, 3))
-        for j in range(n):
-            self._substep(float(v[j]), float(omega[j]))
-            trace[j] = self.pose
+        body = self._body
+        for j, (vj, wj) in enumerate(zip(v.tolist(), omega.tolist())):
+            self._substep(vj, wj)
+            x, y = body.position
+            trace[j] = (x, y, _wrap(body.angle))
         self.trace = trace
         return self.state, trace
 
     def _substep(self, v: float, omega: float) -> None:
         dt = self.params.dt
-        self._fire_events()
-        t_next = (self._k + 1) * dt
-        for body, path in self._movers:
-            x, y = path.position(t_next)
-            body.velocity = ((x - body.position.x) / dt, (y - body.position.y) / dt)
-        theta = self._body.angle
-        self._body.velocity = self._slide((v * math.cos(theta), v * math.sin(theta)))
-        self._body.angular_velocity = omega
+        if self._pending:
+            self._fire_events()
+        if self._movers:
+            t_next = (self._k + 1) * dt
+            for body, path in self._movers:
+                x, y = path.position(t_next)
+                bx, by = body.position
+                body.velocity = ((x - bx) / dt, (y - by) / dt)
+        robot = self._body
+        theta = robot.angle
+        robot.velocity = self._slide((v * math.cos(theta), v * math.sin(theta)))
+        robot.angular_velocity = omega
         self.space.step(dt)
         if self._movers:
             self._unsqueeze()
@@ -310,10 +316,17 @@ class PymunkWorld:
         already inside an obstacle (pressed against a wall) reads 0.
         """
         sensors = self.params.long_range if sensors is None else sensors
-        start, end = sensor_rays(self.pose, sensors, self.params.radius)
         out = np.full(len(sensors.angles), np.inf)
-        for i, (a, b) in enumerate(zip(start, end)):
-            hit = self.space.segment_query_first(tuple(a), tuple(b), 0.0, _SENSOR_FILTER)
+        # Every ray lies in the square of half-side radius + range round the centre, and a ray can hit only a
+        # shape whose bounding box it crosses: when no shape's box meets the square, no ray hits anything.
+        x, y = self._body.position
+        reach = self.params.radius + sensors.range_m
+        if not self.space.bb_query(pymunk.BB(x - reach, y - reach, x + reach, y + reach), _SENSOR_FILTER):
+            return out
+        start, end = sensor_rays(self.pose, sensors, self.params.radius)
+        query = self.space.segment_query_first
+        for i, (a, b) in enumerate(zip(start.tolist(), end.tolist())):
+            hit = query(a, b, 0.0, _SENSOR_FILTER)
             if hit is not None:
                 out[i] = hit.alpha * sensors.range_m
         return out
@@ -348,6 +361,13 @@ class PymunkWorld:
         x, y, theta = self.pose
         return (f"PymunkWorld({self.world.name!r}, t={self.t:.3f} s, pose=({x:.3f}, {y:.3f}, {theta:.3f}), "
                 f"collisions={self.collisions})")
+
+
+def _wrap(a: float) -> float:
+    """:func:`robots.kinematics.wrap_angle` of one float, without NumPy's per-call cost: Python's float ``%``
+    is NumPy's ``mod`` for float64 (both take C's ``fmod`` and move the result to the divisor's sign), so
+    the value is the same to the bit."""
+    return math.pi - (math.pi - a) % (2.0 * math.pi)
 
 
 def _finite(value, shape, where: str) -> np.ndarray:
