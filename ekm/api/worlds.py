@@ -17,7 +17,7 @@ def world(name_or_path):
     Example::
 
         w = ekm.world("concave-obstacle")
-        w.size, w.start, w.goal     # (1.0, 1.0), (x, y, heading), (x, y)
+        w.size, w.start, w.goal     # (1.2, 0.8), (0.15, 0.4, 0.0): x, y in m, heading in rad; (1.05, 0.4)
     """
     from robots.worldfile import load_world
 
