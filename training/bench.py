@@ -14,13 +14,20 @@ import numpy as np
 from ekm.config import EKMConfig
 from training import reference
 from training.online import TrainConfig, draw_noise, start, train_chunk
+from training.run import trial_layout
 
 
-def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000, repeats: int = 3) -> dict:
-    """Trial-steps per second of ``train_chunk`` (one ``lax.scan`` of ``steps``, ``vmap`` over ``trials``)."""
+def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000, repeats: int = 3,
+                          devices=None) -> dict:
+    """Trial-steps per second of ``train_chunk`` (one ``lax.scan`` of ``steps``, ``vmap`` over ``trials``),
+    with the trials spread over ``devices`` (default: every JAX device present) as :func:`training.run.train`
+    spreads them (:func:`training.run.trial_layout`; a padding trial is not counted)."""
     tcfg = TrainConfig(steps=100_000, trials=trials)
-    keys = jax.random.split(jax.random.PRNGKey(0), trials)
+    padded, sharding = trial_layout(trials, devices)
+    keys = jax.random.split(jax.random.PRNGKey(0), padded)
     s = jax.vmap(lambda k: start(k, cfg, tcfg))(keys)
+    if sharding is not None:
+        s, keys = jax.device_put((s, keys), sharding)
     t0 = time.perf_counter()
     jax.block_until_ready(train_chunk(s, keys, 0.0, length=steps, cfg=cfg, tcfg=tcfg))
     compile_s = time.perf_counter() - t0
@@ -29,7 +36,8 @@ def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000,
         t0 = time.perf_counter()
         s = jax.block_until_ready(train_chunk(s, keys, float(r * steps), length=steps, cfg=cfg, tcfg=tcfg))
         best = min(best, time.perf_counter() - t0)
-    return {"trial_steps_per_s": trials * steps / best, "first_call_s": compile_s}
+    return {"trial_steps_per_s": trials * steps / best, "first_call_s": compile_s,
+            "devices": 1 if sharding is None else len(sharding.device_set)}
 
 
 def numpy_trial_steps_per_s(cfg: EKMConfig, *, steps: int = 200) -> float:
@@ -53,4 +61,4 @@ def quick(mapping: str = "indirect") -> dict:
             "jax_trial_steps_per_s": round(j["trial_steps_per_s"], 1), "numpy_trial_steps_per_s": round(n, 1),
             "ratio": round(j["trial_steps_per_s"] / n, 1), "jax_first_call_s": round(j["first_call_s"], 2),
             "protocol_estimate_s": round(5 * 100_000 / j["trial_steps_per_s"], 1),
-            "jax_version": jax.__version__, "devices": [str(d) for d in jax.devices()]}
+            "jax_version": jax.__version__, "devices": [str(d) for d in jax.devices()], "devices_used": j["devices"]}

@@ -28,22 +28,47 @@ def fresh(cfg: EKMConfig, tcfg: TrainConfig, seed: int):
     return jax.vmap(lambda k: start(k, cfg, tcfg))(jax.random.split(key_init, tcfg.trials)), key_run
 
 
-def trial_sharding(trials: int, devices=None):
-    """How to spread the trial axis over the JAX devices present: a :class:`jax.sharding.NamedSharding` that
-    splits axis 0 over as many devices as divide ``trials`` evenly, or None when that is one device.
+def trial_layout(trials: int, devices=None):
+    """How to spread ``trials`` over the JAX devices present: ``(padded, sharding)``.
 
     The trials are independent (``vmap``), so each device trains its own share and nothing is exchanged;
-    a multi-GPU host, or ``XLA_FLAGS=--xla_force_host_platform_device_count=K`` on a CPU, shares the work.
+    a multi-GPU host, or ``XLA_FLAGS=--xla_force_host_platform_device_count=K`` (``JAX_NUM_CPU_DEVICES=K``)
+    on a CPU, shares the work. The fewest devices that give the smallest share are used; when they do
+    not divide ``trials``, the trial axis is padded to ``padded`` (a multiple of them) with copies of
+    the last trial, whose results are dropped — 5 trials on 2 devices run as 3 + 3. ``sharding`` is a
+    :class:`jax.sharding.NamedSharding` splitting axis 0 over those devices, or None when that is one
+    device (then ``padded == trials``).
     """
     devices = list(jax.devices() if devices is None else devices)
-    used = max(d for d in range(1, len(devices) + 1) if trials % d == 0)
+    share = min(-(-trials // d) for d in range(1, len(devices) + 1))
+    used = min(d for d in range(1, len(devices) + 1) if -(-trials // d) == share)
     if used == 1:
-        return None
+        return trials, None
     from jax.sharding import Mesh, NamedSharding, PartitionSpec
 
     import numpy as np
 
-    return NamedSharding(Mesh(np.asarray(devices[:used]), ("trials",)), PartitionSpec("trials"))
+    return share * used, NamedSharding(Mesh(np.asarray(devices[:used]), ("trials",)), PartitionSpec("trials"))
+
+
+def trial_sharding(trials: int, devices=None):
+    """The sharding of :func:`trial_layout` (None: one device)."""
+    return trial_layout(trials, devices)[1]
+
+
+def _pad(tree, padded: int):
+    """``tree`` with its leading (trial) axis padded to ``padded`` by repeating the last entry."""
+    def pad(a):
+        extra = padded - a.shape[0]
+        return a if extra == 0 else jax.numpy.concatenate([a, jax.numpy.repeat(a[-1:], extra, axis=0)])
+    return jax.tree.map(pad, tree)
+
+
+def _unpad(tree, trials: int, device=None):
+    """The first ``trials`` entries of ``tree``'s leading axis; on ``device`` when given (so that what the
+    callbacks compute runs on one device exactly as without sharding)."""
+    tree = jax.tree.map(lambda a: a if a.shape[0] == trials else a[:trials], tree)
+    return tree if device is None else jax.device_put(tree, device)
 
 
 def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int | None = None, on_eval=None,
@@ -59,9 +84,10 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
     done = 0
     if resume is not None:
         done, trainees, key_run = resume
-    sharding = trial_sharding(tcfg.trials)
+    padded, sharding = trial_layout(tcfg.trials)
+    one = None if sharding is None else jax.devices()[0]  # where the callbacks see the maps
     if sharding is not None:
-        trainees = jax.device_put(trainees, sharding)
+        trainees = jax.device_put(_pad(trainees, padded), sharding)
     every = eval_every or tcfg.steps
     bar = None
     if progress:
@@ -70,23 +96,23 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
         bar = tqdm(total=tcfg.steps, initial=done, unit="step", desc=f"training {cfg.mapping} ({tcfg.trials} trials)",
                    dynamic_ncols=True)
     if on_eval and done == 0:
-        on_eval(0, trainees.ekm)
+        on_eval(0, _unpad(trainees.ekm, tcfg.trials, one))
     while done < tcfg.steps:
         target = min(tcfg.steps, (done // every + 1) * every)
         while done < target:
             length = min(MAX_CHUNK, target - done)
             keys = jax.random.split(jax.random.fold_in(key_run, done), tcfg.trials)
             if sharding is not None:
-                keys = jax.device_put(keys, sharding)
+                keys = jax.device_put(_pad(keys, padded), sharding)
             trainees = train_chunk(trainees, keys, float(done), length=length, cfg=cfg, tcfg=tcfg, params=params)
             done += length
             if bar is not None:
                 jax.block_until_ready(trainees)
                 bar.update(length)
         if on_eval:
-            on_eval(done, trainees.ekm)
+            on_eval(done, _unpad(trainees.ekm, tcfg.trials, one))
         if on_checkpoint:
-            on_checkpoint(done, trainees, key_run)
+            on_checkpoint(done, _unpad(trainees, tcfg.trials, one), key_run)
     if bar is not None:
         bar.close()
-    return trainees.ekm
+    return _unpad(trainees.ekm, tcfg.trials)
