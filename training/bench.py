@@ -13,8 +13,8 @@ import numpy as np
 
 from ekm.config import EKMConfig
 from training import reference
-from training.online import TrainConfig, draw_noise, start, train_chunk
-from training.run import trial_layout
+from training.online import TrainConfig, draw_noise, start
+from training.run import chunk, trial_layout
 
 
 def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000, repeats: int = 3,
@@ -29,12 +29,13 @@ def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000,
     if sharding is not None:
         s, keys = jax.device_put((s, keys), sharding)
     t0 = time.perf_counter()
-    jax.block_until_ready(train_chunk(s, keys, 0.0, length=steps, cfg=cfg, tcfg=tcfg))
+    jax.block_until_ready(chunk(s, keys, 0.0, length=steps, cfg=cfg, tcfg=tcfg, sharding=sharding))
     compile_s = time.perf_counter() - t0
     best = np.inf
     for r in range(repeats):
         t0 = time.perf_counter()
-        s = jax.block_until_ready(train_chunk(s, keys, float(r * steps), length=steps, cfg=cfg, tcfg=tcfg))
+        s = jax.block_until_ready(chunk(s, keys, float(r * steps), length=steps, cfg=cfg, tcfg=tcfg,
+                                             sharding=sharding))
         best = min(best, time.perf_counter() - t0)
     return {"trial_steps_per_s": trials * steps / best, "first_call_s": compile_s,
             "devices": 1 if sharding is None else len(sharding.device_set)}

@@ -11,6 +11,8 @@ chunk's noise comes from ``fold_in(key_run, step)`` and the chunks after an eval
 
 from __future__ import annotations
 
+from functools import partial
+
 import jax
 
 from ekm.config import EKMConfig
@@ -54,6 +56,27 @@ def trial_layout(trials: int, devices=None):
 def trial_sharding(trials: int, devices=None):
     """The sharding of :func:`trial_layout` (None: one device)."""
     return trial_layout(trials, devices)[1]
+
+
+def chunk(trainees, keys, t0, *, length: int, cfg: EKMConfig, tcfg: TrainConfig, sharding=None,
+          params: RobotParams = KHEPERA):
+    """:func:`training.online.train_chunk` on the trial layout of ``sharding`` (:func:`trial_layout`; None:
+    one device). Each device runs ``train_chunk`` on its own trials (``shard_map``): left to sharding
+    propagation, XLA gathered every trial onto both devices for the winner search's ``top_k`` at every step.
+    """
+    if sharding is None:
+        return train_chunk(trainees, keys, t0, length=length, cfg=cfg, tcfg=tcfg, params=params)
+    return _sharded_chunk(trainees, keys, t0, length=length, cfg=cfg, tcfg=tcfg, params=params, mesh=sharding.mesh)
+
+
+@partial(jax.jit, static_argnames=("length", "cfg", "tcfg", "params", "mesh"))
+def _sharded_chunk(trainees, keys, t0, *, length, cfg, tcfg, params, mesh):
+    from jax.sharding import PartitionSpec
+
+    local = partial(train_chunk, length=length, cfg=cfg, tcfg=tcfg, params=params)
+    trials = PartitionSpec(mesh.axis_names[0])
+    return jax.shard_map(local, mesh=mesh, in_specs=(trials, trials, PartitionSpec()), out_specs=trials)(
+        trainees, keys, t0)
 
 
 def _pad(tree, padded: int):
@@ -104,7 +127,8 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
             keys = jax.random.split(jax.random.fold_in(key_run, done), tcfg.trials)
             if sharding is not None:
                 keys = jax.device_put(_pad(keys, padded), sharding)
-            trainees = train_chunk(trainees, keys, float(done), length=length, cfg=cfg, tcfg=tcfg, params=params)
+            trainees = chunk(trainees, keys, float(done), length=length, cfg=cfg, tcfg=tcfg, sharding=sharding,
+                             params=params)
             done += length
             if bar is not None:
                 jax.block_until_ready(trainees)
