@@ -1,17 +1,18 @@
 """How fast scenario runs go (DESIGN §5, §6; thesis ch. 6.2), and where the time of a 0.128 s tick goes.
 
-Run from the repository root (about a minute on 2 cores with the defaults)::
+Run from the repository root (about four minutes on 2 cores with the defaults)::
 
     python benchmarks/bench_scenarios.py                          # markdown tables
     python benchmarks/bench_scenarios.py --architectures fusion,fields:form=thesis --worlds concave-obstacle
     python benchmarks/bench_scenarios.py --json                   # the numbers
 
 (options: ``--architectures`` in ``ekm run``'s spelling, comma-separated, default
-``fusion,fields,fields:form=thesis,samba,schema`` — any architecture :mod:`robots.controllers.spec` knows works;
-``--worlds`` comma-separated named worlds, default ``three-rooms-static,three-rooms-moving,concave-obstacle``;
+``fusion,fields,samba,schema`` (the README's compare table) — any architecture :mod:`robots.controllers.spec`
+knows works; ``--worlds`` comma-separated named worlds, default all eight;
 ``--seeds 3`` runs per world; ``--calls 300`` / ``--repeat 5`` for the tight loops, best block kept.)
 
-Each architecture drives its shipped map (:func:`ekm.data.load_default_map`, trial ``seed % trials`` as
+The first table is the summary: real-time factor (simulated s per wall s, all timed runs of the cell
+together) per architecture and world, and the slowest cell of each architecture. Each architecture drives its shipped map (:func:`ekm.data.load_default_map`, trial ``seed % trials`` as
 :func:`evaluation.scenario.run_architecture` picks it) through :func:`evaluation.scenario.run_scenario`
 with the default :class:`~evaluation.scenario.ScenarioConfig`. Per architecture and world:
 
@@ -72,8 +73,9 @@ from robots.controllers.spec import parse_architectures  # noqa: E402
 from robots.world import PymunkWorld  # noqa: E402
 from robots.worldfile import load_world  # noqa: E402
 
-DEFAULT_ARCHITECTURES = "fusion,fields,fields:form=thesis,samba,schema"
-DEFAULT_WORLDS = "three-rooms-static,three-rooms-moving,concave-obstacle"
+DEFAULT_ARCHITECTURES = "fusion,fields,samba,schema"  # the four of the README's compare table
+DEFAULT_WORLDS = ("three-rooms-static,three-rooms-moving,three-rooms-changed,extended-obstacle,concave-obstacle,"
+                  "three-rooms,open-arena,moving-target")  # every named world
 PARTS = ("physics", "sensing", "controller", "planner", "rest")
 PART_LABEL = {"physics": "pymunk physics", "sensing": "IR sensing", "controller": "controller step",
               "planner": "planner", "rest": "rest of the runner"}
@@ -292,7 +294,24 @@ def measure(spec, worlds: dict, seeds: list[int], config: ScenarioConfig, calls:
 
 
 # ---------------------------------------------------------------------------------------------- output
+def print_summary(results: list[dict]) -> None:
+    """Real-time factor per architecture (rows) and world (columns), all runs, the slowest world and the
+    slowest single run of each architecture."""
+    worlds = list(results[0]["worlds"])
+    print("\n| real-time × | " + " | ".join(f"`{w}`" for w in worlds) + " | all | slowest world | slowest run |")
+    print("|---|" + "---:|" * (len(worlds) + 3))
+    for res in results:
+        rtf = {w: res["worlds"][w]["summary"]["real_time_factor"] for w in worlds}
+        low = min(rtf, key=rtf.get)
+        runs = [r for w in worlds for r in res["worlds"][w]["runs"]]
+        slow = min(runs, key=lambda r: r["sim_s"] / r["wall_s"])
+        print(f"| {res['label']} | " + " | ".join(f"{rtf[w]:.0f}" for w in worlds) +
+              f" | {res['summary']['real_time_factor']:.0f} | {rtf[low]:.0f} ({low}) | "
+              f"{slow['sim_s'] / slow['wall_s']:.0f} |")
+
+
 def print_tables(results: list[dict]) -> None:
+    print_summary(results)
     for res in results:
         print(f"\n### {res['label']}  ({res['architecture']}, {res['map']})\n")
         print("| world | runs | reached | ticks/run | sim s/run | wall s/run | real-time × | ticks/s "
