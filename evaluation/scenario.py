@@ -31,6 +31,7 @@ pure, and nothing else is random.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -153,6 +154,7 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     monitor = TrapMonitor(config.trap_after, config.trap_progress)
     radii = np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32)
     state = controller.init()
+    step = _in_one_loop(controller.step)
     poses, times = [sim.pose], [0.0]
     last_t, collisions, settled_since = 0.0, 0, None
     ticks = int(math.ceil(config.time_limit / period - 1e-9))
@@ -200,7 +202,7 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             target_velocity=np.asarray(world.goal.velocity(t) if (final and world.moving_goal) else (0.0, 0.0),
                                        np.float32),
             markers=_markers(world, sim, t, radii))
-        state, command = controller.step(state, obs)
+        state, command = step(state, obs)
         command = np.asarray(command, dtype=float)
         distance = float(np.linalg.norm(pose[:2] - goal))
         inside = final and not world.moving_goal and distance < config.checkpoint_tolerance
@@ -255,6 +257,69 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     rec.final_distance_m = float(np.linalg.norm(sim.pose[:2] - np.asarray(world.goal_at(sim.t))))
     rec.reached = rec.arrived and rec.collisions == 0
     return rec
+
+
+def _in_one_loop(step):
+    """``step`` run inside a one-iteration ``fori_loop`` of one jitted call: the same computation, but XLA's
+    CPU runtime runs a loop body's kernels one after the other instead of handing independent ones to its
+    thread pool, which for a controller's many small kernels costs more than it saves (Samba's step:
+    490 µs a call against 320 µs, the neural fields' 870 µs against 730 µs; ``docs/speed.md``).
+
+    Every architecture builds its step as a ``functools.partial`` of a jitted function with the map arrays
+    and the hashable parameters bound as keywords; the wrapper passes the arrays as arguments and the rest
+    as static arguments, so it compiles once per architecture and parameters, like the step itself, not
+    once per run. Anything else, or a state whose types the step changes (which cannot be a loop carry),
+    is called as it is.
+    """
+    if not isinstance(step, functools.partial) or step.args:
+        return step
+    arrays = {k: v for k, v in step.keywords.items() if _is_arrays(v)}
+    static = tuple(sorted((k, v) for k, v in step.keywords.items() if k not in arrays))
+    try:
+        hash(static)
+    except TypeError:
+        return step
+    plain = False
+
+    def call(state, obs):
+        nonlocal plain
+        if not plain:
+            try:
+                return _looped(state, obs, arrays, func=step.func, static=static)
+            except TypeError:
+                plain = True
+        return step(state, obs)
+
+    return call
+
+
+def _is_arrays(value) -> bool:
+    import jax
+
+    leaves = jax.tree.leaves(value)
+    return bool(leaves) and all(isinstance(a, (jax.Array, np.ndarray)) for a in leaves)
+
+
+def _looped_impl(state, obs, arrays, *, func, static):
+    import jax
+
+    def one(s):
+        return func(s, obs, **arrays, **dict(static))
+
+    command = jax.eval_shape(one, state)[1]
+    return jax.lax.fori_loop(0, 1, lambda _, carry: one(carry[0]), (state, jax.numpy.zeros(command.shape, command.dtype)))
+
+
+def _looped(state, obs, arrays, *, func, static):
+    global _LOOPED
+    if _LOOPED is None:
+        import jax
+
+        _LOOPED = jax.jit(_looped_impl, static_argnames=("func", "static"))
+    return _LOOPED(state, obs, arrays, func=func, static=static)
+
+
+_LOOPED = None
 
 
 def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.ndarray:
