@@ -132,8 +132,9 @@ def instrumented(acc: Accumulator):
 
 
 def timed_controller(ctl, acc: Accumulator):
-    """``ctl`` whose ``step`` is timed into ``acc`` (blocking on its output) and optionally recorded."""
-    inner = ctl.step
+    """``ctl`` whose ``step`` is timed into ``acc`` (blocking on its output) and optionally recorded. The step
+    is called the way the runner calls it (:func:`evaluation.scenario._in_one_loop`, when present)."""
+    inner = getattr(scenario, "_in_one_loop", lambda step: step)(ctl.step)
 
     def step(state, obs):
         n = len(EVENTS)
