@@ -260,10 +260,10 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
 
 
 def _in_one_loop(step):
-    """``step`` run inside a one-iteration ``fori_loop`` of one jitted call: the same computation, but XLA's
-    CPU runtime runs a loop body's kernels one after the other instead of handing independent ones to its
-    thread pool, which for a controller's many small kernels costs more than it saves (Samba's step:
-    490 µs a call against 320 µs, the neural fields' 870 µs against 730 µs; ``docs/speed.md``).
+    """``step`` run inside a one-iteration ``fori_loop`` of one jitted call: the same computation (the same
+    bits), cheaper to call — Samba's step 490 µs a call against 320 µs, the neural fields' 870 µs against
+    730 µs (``docs/speed.md``; probably because XLA's CPU runtime runs a loop body's many small kernels
+    one after the other instead of handing independent ones to its thread pool).
 
     Every architecture builds its step as a ``functools.partial`` of a jitted function with the map arrays
     and the hashable parameters bound as keywords; the wrapper passes the arrays as arguments and the rest
