@@ -129,8 +129,6 @@ def train_chunk(trainees: Trainee, keys, t0, *, length: int, cfg: EKMConfig, tcf
             return train_step(s, draw, t, cfg, tcfg, params), None
 
         ts = t0 + jnp.arange(length, dtype=jnp.float32)
-        # Four steps per loop iteration: fewer loop round trips and more room for XLA to schedule; the
-        # same maps bit for bit (docs/speed.md: +16-29 % trial-steps/s; 8 was slower than 1).
-        return jax.lax.scan(body, s, (draws, ts), unroll=4)[0]
+        return jax.lax.scan(body, s, (draws, ts))[0]
 
     return jax.vmap(one_trial)(trainees, keys)
