@@ -48,17 +48,8 @@ def one(job):
     return {**rec.outcome(), "label": architecture, "given": world}  # "given": the name or path as typed
 
 
-def letter(r: dict) -> str:
-    if r["reached"]:
-        return "R"
-    if r["trapped"]:
-        return "T"
-    if r["arrived"]:
-        return "C"
-    return "N" if "route" in r["ended"] else "L"
-
-
 def summarize(results: list[dict], worlds, architectures, seeds) -> list[dict]:
+    from evaluation.compare import run_letter
     rows = []
     for arch in architectures:
         for world in worlds:
@@ -69,7 +60,7 @@ def summarize(results: list[dict], worlds, architectures, seeds) -> list[dict]:
                          "recoveries": sum(r["recoveries"] for r in rs),
                          "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 2) if ok else None,
                          "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 3) if ok else None,
-                         "runs_by_seed": "".join(letter(r) for r in rs)})
+                         "runs_by_seed": "".join(run_letter(r) for r in rs)})
     return rows
 
 

@@ -115,11 +115,11 @@ def summarize(records: list[dict], worlds, labels) -> list[dict]:
                          "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
                          "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
                          "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
-                         "runs_by_trial": "".join(_letter(r) for r in sorted(rs, key=lambda r: r["trial"]))})
+                         "runs_by_trial": "".join(run_letter(r) for r in sorted(rs, key=lambda r: r["trial"]))})
     return rows
 
 
-def _letter(r: dict) -> str:
+def run_letter(r: dict) -> str:
     """R reached, T trapped, C arrived after a collision, N no route after a change of the map, L time limit."""
     if r["reached"]:
         return "R"
