@@ -185,9 +185,11 @@ def init(p: FieldParams) -> FieldState:
 
 
 def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg: EKMConfig, *, radius: float,
-           range_m: float) -> tuple[FieldState, Tick]:
+           range_m: float) -> tuple[FieldState, Tick, jax.Array]:
     """Eq. 5.1–5.3 and 5.6 for one tick. ``form=extended`` first adds the tick's readings to the remembered
-    obstacles, then builds b from those nearer than the target (:func:`body_field`)."""
+    obstacles, then builds b from those nearer than the target (:func:`body_field`). Also returns, for
+    :func:`committed_winner`, which of the neurons' directions and (last) the target's the remembered
+    obstacles block (:func:`memory.blocked_along`; none for ``form=thesis``) ``(N² + 1,)``."""
     s = winner(ekm.w, obs.target, cfg)
     g_a = target_field(ekm.w, s, p, cfg)
     if p.form == "extended":
@@ -196,34 +198,41 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
         state = state._replace(memory=memory)
         u_obs, valid = mem.egocentric(memory, obs.pose, radius=radius)
         valid = valid & (u_obs[:, 1] < obs.target[1])
-        b = body_field(ekm.w, u_obs, valid, radius, p, cfg)
+        directions = jnp.append(ekm.w[:, 0], obs.target[0])
+
+        def per_neuron(u, v):  # on the points that count only (most slots are empty or beyond the target)
+            return (body_field(ekm.w, u, v, radius, p, cfg),
+                    mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=p.clearance))
+
+        b, blocked = mem.over_packed(per_neuron, u_obs, valid)
     else:
         u_obs, valid = obstacle_inputs(obs.ir, angles)
         winners = jax.vmap(lambda u: winner(ekm.w, u, cfg))(u_obs)
         b = obstacle_field(ekm.w, winners, valid, p, cfg)
-    return state, Tick(s, g_a, b, g_a - b, u_obs, valid)
+        blocked = jnp.zeros(ekm.w.shape[0] + 1, bool)
+    return state, Tick(s, g_a, b, g_a - b, u_obs, valid), blocked
 
 
-def committed_winner(w, k, b, target, side, u_obs, valid, radius: float, p: FieldParams, cfg: EKMConfig):
+def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMConfig):
     """The winner when the robot commits to one side of an obstacle (``form=extended``; see the module
-    docstring). Returns ``(k, side)``.
+    docstring). ``blocked`` ``(N² + 1,)``: which neurons' directions and (last) the target's a remembered
+    obstacle blocks nearer than the target (:func:`memory.blocked_along`). Returns ``(k, side)``.
 
-    While a remembered obstacle lies between the robot and the target (:func:`memory.blocked_along` the
-    target's direction), the robot keeps to the side the thesis's winner ``k`` lay on when that began,
+    While a remembered obstacle lies between the robot and the target (the target's direction blocked),
+    the robot keeps to the side the thesis's winner ``k`` lay on when that began,
     and takes the first *open* direction met turning from the target's direction towards that side —
     open: no remembered obstacle along it nearer than the target — as a robot going round an obstacle
     with it on the other hand. Among the neurons of that direction, the target field (Eq. 5.3, its angle
     measured one way round only) picks the one nearest the target's distance. When no direction is open
     the thesis's winner stands; when the way to the target is open again, the commitment ends.
     """
-    reach = target[1]
-    way_blocked = mem.blocked_along(target[None, 0], reach, u_obs, valid, radius=radius, clearance=p.clearance)[0]
+    way_blocked = blocked[-1]
     first_side = jnp.where(wrap(w[k, 0] - target[0]) >= 0, 1.0, -1.0)
     side = jnp.where(way_blocked, jnp.where(side == 0, first_side, side), 0.0)
     swept = jnp.mod(side * (w[:, 0] - target[0]), 2.0 * jnp.pi) / jnp.pi  # 0 … 2 half-turns, one way round
     dd = relative(w[winner(w, target, cfg)], w, cfg)[:, 1]
     g = jnp.exp(-(p.gamma_alpha * swept**2 + p.gamma_d * dd**2) / p.sigma_a**2)
-    open_ = ~mem.blocked_along(w[:, 0], reach, u_obs, valid, radius=radius, clearance=p.clearance)
+    open_ = ~blocked[:-1]
     k_side = jnp.where(jnp.any(open_), jnp.argmax(jnp.where(open_, g - b, -jnp.inf)), k)
     return jnp.where(side != 0, k_side, k), side
 
@@ -232,10 +241,10 @@ def committed_winner(w, k, b, target, side, u_obs, valid, radius: float, p: Fiel
 def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p: FieldParams, radius: float,
          range_m: float):
     """One tick of the cooperative EKMs: winner k of a = G_a − b (Eq. 5.2, 5.4) and its command (Eq. 5.5)."""
-    state, f = fields(state, ekm, obs, angles, p, cfg, radius=radius, range_m=range_m)
+    state, f, blocked = fields(state, ekm, obs, angles, p, cfg, radius=radius, range_m=range_m)
     k = jnp.argmax(f.a)
     if p.form == "extended" and p.commit:
-        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, f.u_obs, f.valid, radius, p, cfg)
+        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked, p, cfg)
         state = state._replace(side=side)
     u = jnp.where(k == f.s, obs.target, ekm.w[k])  # Eq. 5.5: M_k u_p only for k = s, else M_k w_k
     return state._replace(s=f.s.astype(jnp.int32), k=k.astype(jnp.int32)), indirect.command(ekm, u, k, cfg)

@@ -47,28 +47,74 @@ def update(memory: Memory, pose, readings, angles, t, *, radius: float, range_m:
     """
     pts, seen = memory.points, memory.seen
     phi = pose[2] + angles
-    direction = jnp.stack([jnp.cos(phi), jnp.sin(phi)], axis=-1)  # (m, 2)
-    origin = pose[:2] + radius * direction  # rays start on the rim
-    rel = pts[:, None, :] - origin[None, :, :]  # (K, m, 2)
-    along = jnp.sum(rel * direction[None], axis=-1)
-    across = jnp.abs(rel[..., 0] * direction[None, :, 1] - rel[..., 1] * direction[None, :, 0])
+    cos, sin = jnp.cos(phi), jnp.sin(phi)  # (m,) each ray's direction; it starts on the rim
+    ox, oy = pose[0] + radius * cos, pose[1] + radius * sin
+    # Computed once, not once per point and ray: left to itself XLA fuses the cos and sin into the (K, m)
+    # loop below and evaluates them K times over (docs/speed.md); the values are the same either way.
+    cos, sin, ox, oy = jax.lax.optimization_barrier((cos, sin, ox, oy))
+    rx, ry = pts[:, 0:1] - ox[None, :], pts[:, 1:2] - oy[None, :]  # (K, m) from each ray's start
+    along = rx * cos[None, :] + ry * sin[None, :]
+    across = jnp.abs(rx * sin[None, :] - ry * cos[None, :])
     free_to = jnp.where(jnp.isfinite(readings), readings, range_m) - merge
     through = (along >= 0) & (along < free_to[None, :]) & (across < merge)
     seen = jnp.where(jnp.any(through, axis=1) | (t - seen > forget_after), -jnp.inf, seen)
     hits, valid = hit_points(pose, readings, angles, radius, jnp)
 
+    add = _add_hits if hits.shape[0] <= pts.shape[0] else _add_hits_in_turn
+    pts, seen, slot = add(pts, seen, memory.slot, hits, valid, t, merge)
+    return Memory(pts, seen, slot)
+
+
+def _add_hits_in_turn(pts, seen, slot, hits, ok, t, merge: float):
+    """Add the hits ``(m, 2)`` where ``ok`` ``(m,)`` one after the other (the definition): a hit within ``merge``
+    of a remembered point refreshes it, any other takes the ring's next slot. Returns ``(pts, seen, slot)``."""
     def add(carry, x):
         pts, seen, slot = carry
         q, ok = x
-        near = jnp.isfinite(seen) & (jnp.linalg.norm(pts - q, axis=-1) < merge)
+        near = jnp.isfinite(seen) & (_distance(pts[:, 0], pts[:, 1], q[0], q[1]) < merge)
         seen = jnp.where(ok & near, t, seen)  # refresh the points it merges with
         put = ok & ~jnp.any(near)
         pts = jnp.where(put, pts.at[slot].set(q), pts)
         seen = jnp.where(put, seen.at[slot].set(t), seen)
         return (pts, seen, jnp.where(put, (slot + 1) % pts.shape[0], slot)), None
 
-    (pts, seen, slot), _ = jax.lax.scan(add, (pts, seen, memory.slot), (hits, valid))
-    return Memory(pts, seen, slot)
+    return jax.lax.scan(add, (pts, seen, slot), (hits, ok))[0]
+
+
+def _add_hits(pts, seen, slot, hits, ok, t, merge: float):
+    """:func:`_add_hits_in_turn` without a loop over the memory (for m ≤ K hits, when a tick's puts cannot wrap
+    round the ring onto each other): the same points and times to the bit, at a fraction of the cost — a
+    loop of m steps over K slots is m × a few XLA kernels per tick, the costliest part of the fields' step.
+
+    Hit j merges with a remembered point within ``merge`` that no earlier put of this tick has overwritten —
+    the n-th put takes slot (slot + n) mod K, so slot i is overwritten by put number (i − slot) mod K — or
+    with an earlier hit that was put; only the latter chain (m × m) is followed hit by hit.
+    """
+    k, m = seen.shape[0], hits.shape[0]
+    hx, hy = hits[:, 0:1], hits[:, 1:2]  # (m, 1)
+    near = jnp.isfinite(seen)[None, :] & (_distance(pts[None, :, 0], pts[None, :, 1], hx, hy) < merge)  # (m, K)
+    turn = jnp.mod(jnp.arange(k) - slot, k)  # the put of this tick that would overwrite each slot
+    latest = jnp.max(jnp.where(near, turn[None, :], -1), axis=1)  # (m,) the last-overwritten point each hit is near
+    close = _distance(hx.T, hy.T, hx, hy) < merge  # [j, i]: hit i within merge of hit j
+    puts, before, count = [], [], jnp.zeros((), jnp.int32)
+    for j in range(m):
+        earlier = jnp.any(jnp.stack(puts) & close[j, :j]) if puts else False
+        put = ok[j] & (latest[j] < count) & ~earlier
+        puts.append(put)
+        before.append(count)
+        count = count + put.astype(jnp.int32)
+    put, before = jnp.stack(puts), jnp.stack(before)
+    refreshed = jnp.any(ok[:, None] & near & (turn[None, :] >= before[:, None]), axis=0)
+    seen = jnp.where(refreshed, t, seen)
+    into = jnp.where(put, (slot + before) % k, k)  # k: not put (dropped)
+    return (pts.at[into].set(hits, mode="drop"), seen.at[into].set(t, mode="drop"), (slot + count) % k)
+
+
+def _distance(ax, ay, bx, by):
+    """|a − b| from components — ``jnp.linalg.norm`` over a trailing axis of 2 to the bit, without the slow
+    reduction over that axis on the CPU (docs/speed.md)."""
+    dx, dy = ax - bx, ay - by
+    return jnp.sqrt(dx * dx + dy * dy)
 
 
 def egocentric(memory: Memory, pose, *, radius: float):
@@ -78,6 +124,33 @@ def egocentric(memory: Memory, pose, *, radius: float):
     alpha = wrap(jnp.arctan2(dy, dx) - pose[2])
     d = jnp.maximum(jnp.hypot(dx, dy) - radius, 0.0)
     return jnp.stack([alpha, d], axis=-1), jnp.isfinite(memory.seen)
+
+
+#: Sizes the remembered points that count are packed into before the per-neuron work (:func:`over_packed`).
+#: Most ticks count a few dozen of the 128–256 slots (``docs/speed.md``), so the work shrinks 4–16×.
+PACK_SIZES = (16, 64)
+
+
+def over_packed(fn, u_obs, valid, sizes: tuple[int, ...] = PACK_SIZES):
+    """``fn(u, v)`` on ``u_obs`` ``(K, ...)`` and ``valid`` ``(K,)`` packed into the smallest of ``sizes`` (or K)
+    that holds every valid row: the valid rows first, in slot order, then empty rows (``v`` False).
+
+    For a ``fn`` on which invalid rows have no effect the result is that of ``fn(u_obs, valid)`` — exactly
+    for a min, max or any over the rows, up to the order of the terms for a sum — at the cost of the rows
+    that count. One branch per size is compiled (``lax.switch``); the tick takes the one it needs.
+    """
+    k = valid.shape[0]
+    sizes = tuple(s for s in sorted(set(sizes)) if s < k) + (k,)
+    count = jnp.sum(valid.astype(jnp.int32))
+    slot = jnp.where(valid, jnp.cumsum(valid.astype(jnp.int32)) - 1, k)  # where each valid row goes; k: dropped
+
+    def at(size):
+        def run(u):
+            packed = jnp.zeros((size,) + u.shape[1:], u.dtype).at[slot].set(u, mode="drop")
+            return fn(packed, jnp.arange(size) < count)
+        return run
+
+    return jax.lax.switch(jnp.searchsorted(jnp.asarray(sizes), count), [at(s) for s in sizes], u_obs)
 
 
 def cone_half_width(d, *, radius: float, clearance: float):
