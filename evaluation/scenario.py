@@ -266,9 +266,9 @@ def _in_one_loop(step):
     one after the other instead of handing independent ones to its thread pool).
 
     Every architecture builds its step as a ``functools.partial`` of a jitted function with the map arrays
-    and the hashable parameters bound as keywords; the wrapper passes the arrays as arguments and the rest
-    as static arguments, so it compiles once per architecture and parameters, like the step itself, not
-    once per run. Anything else, or a state whose types the step changes (which cannot be a loop carry),
+    and the hashable parameters bound as keywords; the wrapper passes the arrays as arguments and binds the
+    rest into one jitted function per step function and parameters (:func:`_looped`), so it compiles once
+    per architecture and parameters, like the step itself, not once per run. Anything else, or a state whose types the step changes (which cannot be a loop carry),
     is called as it is.
     """
     if not isinstance(step, functools.partial) or step.args:
@@ -279,13 +279,13 @@ def _in_one_loop(step):
         hash(static)
     except TypeError:
         return step
-    plain = False
+    looped, plain = _looped(step.func, static), False
 
     def call(state, obs):
         nonlocal plain
         if not plain:
             try:
-                return _looped(state, obs, arrays, func=step.func, static=static)
+                return looped(state, obs, arrays)
             except TypeError:
                 plain = True
         return step(state, obs)
@@ -310,16 +310,14 @@ def _looped_impl(state, obs, arrays, *, func, static):
     return jax.lax.fori_loop(0, 1, lambda _, carry: one(carry[0]), (state, jax.numpy.zeros(command.shape, command.dtype)))
 
 
-def _looped(state, obs, arrays, *, func, static):
-    global _LOOPED
-    if _LOOPED is None:
-        import jax
+@functools.cache
+def _looped(func, static):
+    """The jitted :func:`_looped_impl` of one step function and its static parameters, made once per process: the
+    parameters are bound here, not passed as static arguments, so a tick does not hash them again (a frozen
+    dataclass hashes all its fields on every call: ~20 µs a tick for Samba's)."""
+    import jax
 
-        _LOOPED = jax.jit(_looped_impl, static_argnames=("func", "static"))
-    return _LOOPED(state, obs, arrays, func=func, static=static)
-
-
-_LOOPED = None
+    return jax.jit(functools.partial(_looped_impl, func=func, static=static))
 
 
 def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.ndarray:
