@@ -23,6 +23,7 @@ robot may touch, not cross, the cushion's edge.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 
@@ -90,6 +91,22 @@ def rasterise(obstacles: Sequence[Padded], size, cell: float) -> np.ndarray:
     the arena. A cell is free iff its closed square lies inside the arena and
     ``distance(square, shape) >= clearance`` for every obstacle (module docstring).
     """
+    try:
+        return _remembered_bitmap(tuple(obstacles), tuple(size), cell)
+    except TypeError:  # unhashable: rasterise without remembering
+        return _rasterise(obstacles, size, cell)
+
+
+@functools.lru_cache(maxsize=64)
+def _remembered_bitmap(obstacles, size, cell: float) -> np.ndarray:
+    """:func:`rasterise`, remembered (read-only): a replan after a known event rasterises the same map in every
+    run of a world, 7 ms each time."""
+    W = _rasterise(obstacles, size, cell)
+    W.flags.writeable = False
+    return W
+
+
+def _rasterise(obstacles, size, cell: float) -> np.ndarray:
     ny, nx = grid_shape(size, cell)
     lo, hi = cell_squares((ny, nx), cell)
     free = np.all(hi <= np.asarray(size, dtype=float) + TIE, axis=-1)

@@ -8,8 +8,9 @@ and keep no state.
 
 from __future__ import annotations
 
+import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -126,9 +127,26 @@ def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: st
     :class:`InputError` when start or goal lie outside the padded free space or the cell size is bad, and
     :class:`NoRouteError` when no route exists.
     """
-    start = world.start[:2] if start is None else start
-    goal = world.goal_at(t) if goal is None else goal
-    return _plan(world, start, goal, cell, method, t, padding, check=("start", "goal"))
+    start = _point(world.start[:2] if start is None else start, "start")
+    goal = _point(world.goal_at(t) if goal is None else goal, "goal")
+    key = (world, start, goal, cell, method, t, padding)
+    try:
+        hash(key)
+    except TypeError:  # an unhashable argument: plan without remembering (the pipeline reports what is wrong)
+        return _plan(*key, check=("start", "goal"))
+    return _remembered_plan(*key)
+
+
+@functools.lru_cache(maxsize=64)
+def _remembered_plan(world, start, goal, cell, method, t, padding) -> Plan:
+    """:func:`plan`, remembered: a plan is a pure function of its arguments, and ``ekm compare`` plans the same
+    world from the same start for every architecture and seed — 10–14 ms each time, a third of a short
+    Samba run's wall time (docs/speed.md). The plan's arrays are read-only, as it is shared."""
+    plan_ = _plan(world, start, goal, cell, method, t, padding, check=("start", "goal"))
+    for a in (*(getattr(plan_, f.name) for f in fields(plan_)), plan_.graph.edges):
+        if isinstance(a, np.ndarray):
+            a.flags.writeable = False
+    return plan_
 
 
 def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius, reach: float = 0.0) -> Plan:

@@ -130,3 +130,19 @@ def test_goal_walled_off_by_a_known_event_has_no_route():
 def test_unknown_method_is_refused():
     with pytest.raises(InputError, match="method: must be one of slippery, quadtree, grid"):
         plan(load_world("three-rooms"), method="voronoi")
+
+
+def test_a_plan_is_remembered_shared_read_only_and_equal_to_a_fresh_one():
+    from planner.plan import _plan
+    from robots.params import KHEPERA
+
+    world = load_world("three-rooms")
+    first, again = plan(world), plan(world, start=np.array(world.start[:2]))
+    assert again is first  # the same start given as an array finds the remembered plan
+    fresh = _plan(world, world.start[:2], world.goal, first.cell, first.method, 0.0, KHEPERA.radius, check=("start", "goal"))
+    np.testing.assert_array_equal(first.checkpoints, fresh.checkpoints)
+    np.testing.assert_array_equal(first.labels, fresh.labels)
+    for a in (first.bitmap, first.labels, first.checkpoints):
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0
+    assert plan(world, cell=0.025) is not first
