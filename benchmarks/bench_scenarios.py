@@ -9,7 +9,9 @@ Run from the repository root (about four minutes on 2 cores with the defaults)::
 (options: ``--architectures`` in ``ekm run``'s spelling, comma-separated, default
 ``fusion,fields,samba,schema`` (the README's compare table) — any architecture :mod:`robots.controllers.spec`
 knows works; ``--worlds`` comma-separated named worlds, default all eight;
-``--seeds 3`` runs per world; ``--calls 300`` / ``--repeat 5`` for the tight loops, best block kept.)
+``--seeds 3`` runs per world; ``--calls 300`` / ``--repeat 5`` for the tight loops, best block kept;
+``--no-pin`` leaves the process free to use every CPU instead of one, as ``ekm run`` and ``ekm compare``'s
+workers use, :mod:`evaluation.pinning`.)
 
 The first table is the summary: real-time factor (simulated s per wall s, all timed runs of the cell
 together) per architecture and world, and the slowest cell of each architecture. Each architecture drives its shipped map (:func:`ekm.data.load_default_map`, trial ``seed % trials`` as
@@ -68,6 +70,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a check
 import evaluation.scenario as scenario  # noqa: E402
 from ekm.data import load_default_map  # noqa: E402
 from ekm.errors import InputError  # noqa: E402
+from evaluation.pinning import pin_to_one_cpu  # noqa: E402
 from evaluation.scenario import ScenarioConfig, run_scenario  # noqa: E402
 from robots.controllers.spec import parse_architectures  # noqa: E402
 from robots.world import PymunkWorld  # noqa: E402
@@ -391,10 +394,14 @@ def main(argv=None) -> int:
                     help="simulated seconds before a run is given up (default %(default)g)")
     ap.add_argument("--calls", type=int, default=300, help="controller calls per tight-loop block (default 300)")
     ap.add_argument("--repeat", type=int, default=5, help="tight-loop blocks, best kept (default 5)")
+    ap.add_argument("--no-pin", action="store_true",
+                    help="leave the process free to use every CPU (default: one CPU, as ekm run and ekm compare's "
+                         "workers run; evaluation.pinning)")
     ap.add_argument("--json", action="store_true", help="print the numbers as JSON instead of tables")
     args = ap.parse_args(argv)
     if args.seeds < 1 or args.calls < 1 or args.repeat < 1:
         ap.error("--seeds, --calls and --repeat must be >= 1")
+    cpu = None if args.no_pin else pin_to_one_cpu()  # before the JAX backend starts (below)
 
     try:
         specs = parse_architectures(args.architectures)
@@ -416,11 +423,12 @@ def main(argv=None) -> int:
         print(json.dumps(finite({"jax": jax.__version__, "devices": [str(d) for d in jax.devices()],
                                  "seeds": args.seeds, "time_limit_s": args.time_limit, "results": results,
                                  "conclusion": conclusion(results), "benchmark_wall_s": total,
-                                 "load_average_1min": [load, os.getloadavg()[0]]}), indent=2))
+                                 "load_average_1min": [load, os.getloadavg()[0]], "pinned_cpu": cpu}), indent=2))
     else:
         print(f"jax {jax.__version__} on {jax.devices()}; {args.seeds} seeds per world, warm-up run first; "
               f"benchmark took {total:.0f} s; 1-min load average {load:.1f} before, {os.getloadavg()[0]:.1f} after "
-              f"(on {os.cpu_count()} cores: more means other work shared the CPU)")
+              f"(on {os.cpu_count()} cores: more means other work shared the CPU); "
+              + ("not pinned" if cpu is None else f"pinned to CPU {cpu} (evaluation.pinning)"))
         print_tables(results)
     return 0
 

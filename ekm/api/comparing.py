@@ -190,8 +190,12 @@ def _executor(workers: int | None, scheduler: str | None):
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    # spawn, not fork: a forked JAX process can deadlock
-    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")), None
+    from evaluation.pinning import pin_worker
+
+    # spawn, not fork: a forked JAX process can deadlock. Each worker runs on a CPU of its own (evaluation.pinning).
+    context = multiprocessing.get_context("spawn")
+    return ProcessPoolExecutor(workers, mp_context=context, initializer=pin_worker,
+                               initargs=(context.Value("i", 0),)), None
 
 
 class _InProcess:

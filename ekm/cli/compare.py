@@ -36,6 +36,10 @@ def run(args) -> None:
     from ekm.api.comparing import compare
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    if args.workers == 1 and not args.scheduler:  # the runs go in this process: one CPU for it (evaluation.pinning)
+        from evaluation.pinning import pin_to_one_cpu
+
+        pin_to_one_cpu()
     table = compare(args.worlds, args.architectures, trials=args.trials, seed=args.seed, maps=args.map,
                     recover=args.recover, time_limit=args.time_limit, workers=args.workers, scheduler=args.scheduler,
                     progress=show_progress(args))

@@ -35,7 +35,9 @@ def run(args) -> None:
     """Drive the robot through a world with one architecture and report the outcome (DESIGN §6;
     :func:`ekm.run`)."""
     from ekm.api.driving import run as drive
+    from evaluation.pinning import pin_to_one_cpu
 
+    pin_to_one_cpu()  # one run, one thread of work: one CPU for it (evaluation.pinning)
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
     if args.maps_at is not None:
