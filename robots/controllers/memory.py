@@ -45,7 +45,18 @@ def update(memory: Memory, pose, readings, angles, t, *, radius: float, range_m:
     First forget what the rays see through and what is older than ``forget_after`` seconds, then add the
     hits (see the module docstring).
     """
-    pts, seen = memory.points, memory.seen
+    seen = forget(memory.points, memory.seen, pose, readings, angles, t, radius=radius, range_m=range_m, merge=merge,
+                  forget_after=forget_after)
+    hits, valid = hit_points(pose, readings, angles, radius, jnp)
+    add = _add_hits if hits.shape[0] <= memory.points.shape[0] else _add_hits_in_turn
+    pts, seen, slot = add(memory.points, seen, memory.slot, hits, valid, t, merge)
+    return Memory(pts, seen, slot)
+
+
+def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: float, merge: float, forget_after: float):
+    """``seen`` ``(K,)`` after forgetting the points ``pts`` ``(K, 2)`` that a ray of this tick passes through, short
+    of what it hit (farther than ``merge`` before it, within ``merge`` of the ray), and those older than
+    ``forget_after`` s: −inf for them (see :func:`update`)."""
     phi = pose[2] + angles
     cos, sin = jnp.cos(phi), jnp.sin(phi)  # (m,) each ray's direction; it starts on the rim
     ox, oy = pose[0] + radius * cos, pose[1] + radius * sin
@@ -57,12 +68,7 @@ def update(memory: Memory, pose, readings, angles, t, *, radius: float, range_m:
     across = jnp.abs(rx * sin[None, :] - ry * cos[None, :])
     free_to = jnp.where(jnp.isfinite(readings), readings, range_m) - merge
     through = (along >= 0) & (along < free_to[None, :]) & (across < merge)
-    seen = jnp.where(jnp.any(through, axis=1) | (t - seen > forget_after), -jnp.inf, seen)
-    hits, valid = hit_points(pose, readings, angles, radius, jnp)
-
-    add = _add_hits if hits.shape[0] <= pts.shape[0] else _add_hits_in_turn
-    pts, seen, slot = add(pts, seen, memory.slot, hits, valid, t, merge)
-    return Memory(pts, seen, slot)
+    return jnp.where(jnp.any(through, axis=1) | (t - seen > forget_after), -jnp.inf, seen)
 
 
 def _add_hits_in_turn(pts, seen, slot, hits, ok, t, merge: float):
