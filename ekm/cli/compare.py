@@ -18,7 +18,8 @@ def add_parser(sub) -> None:
     p.add_argument("--seed", type=nonneg_int, default=0,
                    help="trial i runs with seed SEED + i for every architecture and world (default 0)")
     p.add_argument("--workers", type=positive_int, default=None,
-                   help=f"local worker processes (default: the machine's cores, {os.cpu_count()})")
+                   help=f"local worker processes, each on a CPU of its own (default: the machine's cores, "
+                        f"{os.cpu_count()})")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="send the runs to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
