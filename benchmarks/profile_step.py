@@ -4,6 +4,7 @@ Run from the repository root (about 20 s)::
 
     python benchmarks/profile_step.py                                   # fields on three-rooms-static
     python benchmarks/profile_step.py --architecture samba --world concave-obstacle --top 20
+    python benchmarks/profile_step.py --training indirect        # one training step (5 trials), in its scan
 
 Drives one run of the architecture's shipped map (seed 0) to record its observations, takes the state and
 observation two thirds of the way through, and calls the step the way :func:`evaluation.scenario.run_scenario`
@@ -13,6 +14,9 @@ calls it (``_in_one_loop``) ``--calls`` times under ``jax.profiler`` with XLA's 
 (``ThunkExecutor::Execute``) and every fused kernel of the step by its HLO name. Tracing slows everything
 down, so read the rows against each other, not as wall time. ``--hlo`` also prints the operation each of
 the top kernels comes from (the ``op_name`` of its HLO instruction), to find it in the code.
+
+``--training MAPPING`` traces ``training.online.train_chunk`` instead (15×15 map, 5 trials, one chunk of
+``--calls`` steps) and prints µs per training step: the kernels of the scan's body, each once a step.
 
 This is how the reductions over trailing axes of length 2 (``ynn_fusion`` kernels) and the sines and
 cosines recomputed inside a (points × rays) loop were found (``docs/speed.md``).
@@ -81,6 +85,23 @@ def kernel_times(call, calls: int) -> tuple[collections.Counter, collections.Cou
     return total, count
 
 
+def profile_training(mapping: str, steps: int, top: int) -> int:
+    """Print µs per step of one traced chunk of ``steps`` training steps (5 trials, ``vmap``)."""
+    from ekm.config import EKMConfig
+    from training.online import TrainConfig, start, train_chunk
+
+    cfg, tcfg = EKMConfig(mapping=mapping), TrainConfig(steps=100_000, trials=5)
+    keys = jax.random.split(jax.random.PRNGKey(0), tcfg.trials)
+    trainees = jax.vmap(lambda k: start(k, cfg, tcfg))(keys)
+    total, count = kernel_times(lambda: jax.block_until_ready(
+        train_chunk(trainees, keys, 0.0, length=steps, cfg=cfg, tcfg=tcfg)), 1)
+    print(f"training, {mapping}, 5 trials: µs per step (traced) and events per step, over one chunk of {steps} steps:")
+    for name, us in total.most_common(top):
+        if not (name.startswith("$") or "stop_trace" in name):
+            print(f"{us / steps:9.2f}  {count[name] / steps:5.2f}  {name[:70]}")
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--architecture", default="fields", help="as ekm run spells it (default fields)")
@@ -88,7 +109,10 @@ def main(argv=None) -> int:
     ap.add_argument("--calls", type=int, default=200, help="traced calls (default 200)")
     ap.add_argument("--top", type=int, default=30, help="events to print (default 30)")
     ap.add_argument("--hlo", action="store_true", help="name the operation behind each top kernel")
+    ap.add_argument("--training", choices=("indirect", "direct"), help="trace a training step instead")
     args = ap.parse_args(argv)
+    if args.training:
+        return profile_training(args.training, args.calls, args.top)
     spec = parse_architectures(args.architecture)[0]
     ctl, ticks = recorded(spec, load_world(args.world))
     state, obs = ticks[len(ticks) * 2 // 3]
