@@ -161,7 +161,8 @@ def _segment_meets_box(a, b, lo, hi) -> np.ndarray:
         if d == 0.0:
             ok &= (lo[..., k] <= a[k]) & (a[k] <= hi[..., k])
             continue
-        ta, tb = (lo[..., k] - a[k]) / d, (hi[..., k] - a[k]) / d
+        with np.errstate(over="ignore"):  # a tiny d gives ±inf: the right limits for the clipping below
+            ta, tb = (lo[..., k] - a[k]) / d, (hi[..., k] - a[k]) / d
         t0 = np.maximum(t0, np.minimum(ta, tb))
         t1 = np.minimum(t1, np.maximum(ta, tb))
     return ok & (t0 <= t1)
