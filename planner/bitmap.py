@@ -91,10 +91,12 @@ def rasterise(obstacles: Sequence[Padded], size, cell: float) -> np.ndarray:
     the arena. A cell is free iff its closed square lies inside the arena and
     ``distance(square, shape) >= clearance`` for every obstacle (module docstring).
     """
+    key = (tuple(obstacles), tuple(size), cell)
     try:
-        return _remembered_bitmap(tuple(obstacles), tuple(size), cell)
-    except TypeError:  # unhashable: rasterise without remembering
+        hash(key)
+    except TypeError:  # an unhashable argument: rasterise without remembering
         return _rasterise(obstacles, size, cell)
+    return _remembered_bitmap(*key)
 
 
 @functools.lru_cache(maxsize=64)

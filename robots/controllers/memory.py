@@ -110,8 +110,9 @@ def _add_hits(pts, seen, slot, hits, ok, t, merge: float):
         before.append(count)
         count = count + put.astype(jnp.int32)
     put, before = jnp.stack(puts), jnp.stack(before)
-    refreshed = jnp.any(ok[:, None] & near & (turn[None, :] >= before[:, None]), axis=0)
-    seen = jnp.where(refreshed, t, seen)
+    # A point a hit merges with is refreshed to t; if an earlier put had already overwritten it, that put set
+    # its slot's time to t too — so whether it was overwritten first does not matter here.
+    seen = jnp.where(jnp.any(ok[:, None] & near, axis=0), t, seen)
     into = jnp.where(put, (slot + before) % k, k)  # k: not put (dropped)
     return (pts.at[into].set(hits, mode="drop"), seen.at[into].set(t, mode="drop"), (slot + count) % k)
 
