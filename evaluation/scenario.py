@@ -268,7 +268,8 @@ def _in_one_loop(step):
     Every architecture builds its step as a ``functools.partial`` of a jitted function with the map arrays
     and the hashable parameters bound as keywords; the wrapper passes the arrays as arguments and binds the
     rest into one jitted function per step function and parameters (:func:`_looped`), so it compiles once
-    per architecture and parameters, like the step itself, not once per run. Anything else, or a state whose types the step changes (which cannot be a loop carry),
+    per architecture and parameters, like the step itself, not once per run. Anything else, or a state
+    whose types the step changes (which cannot be a loop carry),
     is called as it is.
     """
     if not isinstance(step, functools.partial) or step.args:
