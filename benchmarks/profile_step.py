@@ -85,7 +85,7 @@ def kernel_times(call, calls: int) -> tuple[collections.Counter, collections.Cou
     return total, count
 
 
-def profile_training(mapping: str, steps: int, top: int) -> int:
+def profile_training(mapping: str, steps: int, top: int, show_hlo: bool = False) -> int:
     """Print µs per step of one traced chunk of ``steps`` training steps (5 trials, ``vmap``)."""
     from ekm.config import EKMConfig
     from training.online import TrainConfig, start, train_chunk
@@ -95,11 +95,18 @@ def profile_training(mapping: str, steps: int, top: int) -> int:
     trainees = jax.vmap(lambda k: start(k, cfg, tcfg))(keys)
     total, count = kernel_times(lambda: jax.block_until_ready(
         train_chunk(trainees, keys, 0.0, length=steps, cfg=cfg, tcfg=tcfg)), 1)
+    hlo = train_chunk.lower(trainees, keys, 0.0, length=steps, cfg=cfg, tcfg=tcfg).compile().as_text() if show_hlo else ""
     print(f"training, {mapping}, 5 trials: µs per step (traced) and events per step, over one chunk of {steps} steps:")
     for name, us in total.most_common(top):
         if not (name.startswith("$") or "stop_trace" in name):
-            print(f"{us / steps:9.2f}  {count[name] / steps:5.2f}  {name[:70]}")
+            print(f"{us / steps:9.2f}  {count[name] / steps:5.2f}  {name[:70]}{_origin(name, hlo)}")
     return 0
+
+
+def _origin(kernel: str, hlo: str) -> str:
+    """`` <- operation`` behind ``kernel`` in the compiled ``hlo`` text (its ``op_name``), or ``""``."""
+    m = re.search(r"\n\s*(?:ROOT )?%" + re.escape(kernel) + r" = [^\n]*op_name=\"([^\"]*)\"", hlo) if hlo else None
+    return f"   <- {m.group(1).split('/')[-1]}" if m else ""
 
 
 def main(argv=None) -> int:
@@ -112,7 +119,7 @@ def main(argv=None) -> int:
     ap.add_argument("--training", choices=("indirect", "direct"), help="trace a training step instead")
     args = ap.parse_args(argv)
     if args.training:
-        return profile_training(args.training, args.calls, args.top)
+        return profile_training(args.training, args.calls, args.top, args.hlo)
     spec = parse_architectures(args.architecture)[0]
     ctl, ticks = recorded(spec, load_world(args.world))
     state, obs = ticks[len(ticks) * 2 // 3]
@@ -128,11 +135,7 @@ def main(argv=None) -> int:
     for name, us in total.most_common(args.top):
         if name.startswith("$profiler") or "stop_trace" in name:
             continue
-        line = f"{us / args.calls:9.1f}  {count[name] / args.calls:5.1f}  {name[:70]}"
-        if hlo:
-            m = re.search(r"\n\s*(?:ROOT )?%" + re.escape(name) + r" = [^\n]*op_name=\"([^\"]*)\"", hlo)
-            line += f"   <- {m.group(1).split('/')[-1]}" if m else ""
-        print(line)
+        print(f"{us / args.calls:9.1f}  {count[name] / args.calls:5.1f}  {name[:70]}{_origin(name, hlo)}")
     return 0
 
 
