@@ -131,6 +131,8 @@ def load_maps(path) -> SavedMaps:
         trials = a.shape[0]
         if not np.all(np.isfinite(a)):
             raise InputError(f"{where}: array {name!r} contains NaN or infinite values")
+        if name == "w" and np.any(np.abs(a[..., 0]) > np.float32(np.pi)):  # ekm.kohonen.wrap_once needs it
+            raise InputError(f"{where}: array 'w' has directions outside [-pi, pi] (column 0 is an angle in rad)")
     if trials == 0:
         raise InputError(f"{where}: the file holds no maps (0 trials)")
     arena, curve = _checked_protocol(meta, where)

@@ -77,6 +77,7 @@ def meta_of(path):
 
 @pytest.mark.parametrize("case, message", [
     ("nan", "contains NaN"),
+    ("angle", "directions outside"),
     ("shape", "has shape"),
     ("dtype", "dtype"),
     ("missing", "missing array 'M'"),
@@ -92,6 +93,8 @@ def test_bad_map_files_are_refused_with_a_clear_message(good, tmp_path, case, me
     meta = meta_of(good)
     if case == "nan":
         bad = rewrite(good, tmp_path, w=np.where(np.arange(w.size).reshape(w.shape) == 5, np.nan, w))
+    elif case == "angle":
+        bad = rewrite(good, tmp_path, w=w + np.array([4.0, 0.0], w.dtype))
     elif case == "shape":
         bad = rewrite(good, tmp_path, w=w[:, :10])
     elif case == "dtype":
