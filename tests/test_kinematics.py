@@ -52,3 +52,20 @@ def test_slip_draws_must_divide_the_control_period():
         kinematics.slip(np.zeros((64, 2)), np.zeros((3, 2)))
     with pytest.raises(ValueError, match="noise periods"):
         dataclasses.replace(KHEPERA, noise_period=0.048).noise_shape(KHEPERA.avoid_period)
+
+
+def test_advance_pose_is_advances_new_state_to_the_bit_in_numpy_and_jax():
+    import jax
+    import jax.numpy as jnp
+
+    rng = np.random.default_rng(3)
+    pose = np.stack([rng.uniform(0, 1, 200), rng.uniform(0, 1, 200), rng.uniform(-np.pi, np.pi, 200)], -1)
+    state = kinematics.RobotState(pose, rng.uniform(-C, C, (200, 2)))
+    setpoint = kinematics.quantize_command(rng.uniform(-C, C, (200, 2)))
+    noise = rng.uniform(-1, 1, (200,) + KHEPERA.noise_shape(KHEPERA.target_period))
+    for xp, cast, call in [(np, np.asarray, lambda f: f), (jnp, lambda a: jnp.asarray(a, jnp.float32), jax.jit)]:
+        s = kinematics.RobotState(cast(state.pose), cast(state.wheels))
+        full = call(lambda s, c, z: kinematics.advance(s, c, z, N, KHEPERA, xp)[0])(s, cast(setpoint), cast(noise))
+        end = call(lambda s, c, z: kinematics.advance_pose(s, c, z, N, KHEPERA, xp))(s, cast(setpoint), cast(noise))
+        for a, b in zip(full, end):
+            np.testing.assert_array_equal(np.asarray(a), np.asarray(b))

@@ -20,7 +20,7 @@ import jax.numpy as jnp
 
 from ekm import maps
 from ekm.config import EKMConfig
-from robots.kinematics import RobotState, advance, egocentric, is_stop_command, quantize_command
+from robots.kinematics import RobotState, advance_pose, egocentric, is_stop_command, quantize_command
 from robots.params import KHEPERA, RobotParams
 from training.schedules import Schedules
 
@@ -94,7 +94,7 @@ def train_step(s: Trainee, draws, t, cfg: EKMConfig, tcfg: TrainConfig, params: 
     u = egocentric(s.robot.pose, s.target, jnp)  # 1. sensory input u_p
     c_p, _ = maps.control(s.ekm, u, cfg)  # 2. motor control (Eq. 4.5, or c_k)
     c_sent = quantize_command(c_p + sch.explore(t, tcfg.steps) * cfg.c_max * xi_explore, params, jnp)
-    robot, _ = advance(s.robot, c_sent, xi_act, n, params, jnp)
+    robot = advance_pose(s.robot, c_sent, xi_act, n, params, jnp)
     v = egocentric(s.robot.pose, robot.pose[:2], jnp)  # 3. actual displacement, seen from the start pose
     ekm = maps.update(s.ekm, v, c_sent, sch.eta(t, tcfg.steps), sch.sigma(t, tcfg.steps), cfg)  # 4.–6.
     done = s.age + 1 >= tcfg.patience
