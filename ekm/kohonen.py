@@ -124,17 +124,17 @@ def winner(w, u, cfg: EKMConfig):
         return jnp.argmin(dist2)
     dalpha = jnp.abs(diff[:, 0])
 
-    def found(k, left):
-        return (jnp.sum(dalpha < dalpha[k]) < cfg.a_size) | (left[k] == jnp.inf)
+    def found(k, d2):
+        return (jnp.sum(dalpha < dalpha[k]) < cfg.a_size) | (d2 == jnp.inf)
 
-    def rule_out(carry):
-        k, left, _ = carry
-        left = jnp.where(dalpha >= dalpha[k], jnp.inf, left)
+    def rule_out(carry):  # every neuron at least as far in angle as k is out; those nearer were never out
+        k, _ = carry
+        left = jnp.where(dalpha >= dalpha[k], jnp.inf, dist2)
         k = jnp.argmin(left)
-        return k, left, found(k, left)
+        return k, found(k, left[k])
 
     k = jnp.argmin(dist2)
-    return jax.lax.while_loop(lambda carry: ~carry[2], rule_out, (k, dist2, found(k, dist2)))[0]
+    return jax.lax.while_loop(lambda carry: ~carry[1], rule_out, (k, found(k, dist2[k])))[0]
 
 
 def winner_by_partition(w, u, cfg: EKMConfig):
