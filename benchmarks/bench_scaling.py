@@ -61,7 +61,9 @@ def training(devices: list[int], steps: int, protocol: bool) -> list[dict]:
                               env=env_with_devices(n), cwd=ROOT, check=True)
         r = json.loads(proc.stdout.strip().splitlines()[-1])
         row = {"devices": n, "used": r["indirect"]["devices"],
-               "indirect": r["indirect"]["trial_steps_per_s"], "direct": r["direct"]["trial_steps_per_s"]}
+               "indirect": r["indirect"]["trial_steps_per_s"], "direct": r["direct"]["trial_steps_per_s"],
+               "indirect_median": r["indirect"]["median_trial_steps_per_s"],
+               "direct_median": r["direct"]["median_trial_steps_per_s"]}
         if protocol:
             with tempfile.TemporaryDirectory() as tmp:
                 t0 = time.perf_counter()
@@ -111,13 +113,14 @@ def main(argv=None) -> int:
           "(more than 0 means other work shared the CPU)")
     if "training" in out:
         base = out["training"][0]
-        print("\n| host devices | devices used | indirect trial-steps/s | × | direct trial-steps/s | × |"
+        print("\n(trial-steps/s of the best of 5 chunks, and their median)")
+        print("\n| host devices | devices used | indirect trial-steps/s (median) | × | direct trial-steps/s (median) | × |"
               + (" ekm train indirect (s) |" if args.protocol else ""))
         print("|---:|---:|---:|---:|---:|---:|" + ("---:|" if args.protocol else ""))
         for r in out["training"]:
-            print(f"| {r['devices']} | {r['used']} | {r['indirect']:,.0f} | {r['indirect'] / base['indirect']:.2f} | "
-                  f"{r['direct']:,.0f} | {r['direct'] / base['direct']:.2f} |"
-                  + (f" {r['protocol_s']:.1f} |" if args.protocol else ""))
+            print(f"| {r['devices']} | {r['used']} | {r['indirect']:,.0f} ({r['indirect_median']:,.0f}) | "
+                  f"{r['indirect'] / base['indirect']:.2f} | {r['direct']:,.0f} ({r['direct_median']:,.0f}) | "
+                  f"{r['direct'] / base['direct']:.2f} |" + (f" {r['protocol_s']:.1f} |" if args.protocol else ""))
     if "compare" in out:
         base = out["compare"][0]
         print("\n| compare workers | runs | wall s | speed-up | same results |")

@@ -23,7 +23,8 @@ def run(args) -> None:
         return
     print(f"online training, {result['mapping']} {result['neurons']}x{result['neurons']} map, "
           f"{result['trials']} trials, on {', '.join(result['devices'])} (jax {result['jax_version']})")
-    print(f"  JAX (lax.scan + vmap): {result['jax_trial_steps_per_s']:>10,.0f} trial-steps/s "
-          f"(first call with compilation {result['jax_first_call_s']:.1f} s)")
+    print(f"  JAX (lax.scan + vmap): {result['jax_trial_steps_per_s']:>10,.0f} trial-steps/s, best chunk "
+          f"(median {result['jax_median_trial_steps_per_s']:,.0f}; first call with compilation "
+          f"{result['jax_first_call_s']:.1f} s; {result['devices_used']} device(s) used)")
     print(f"  NumPy reference:       {result['numpy_trial_steps_per_s']:>10,.0f} trial-steps/s")
     print(f"  ratio {result['ratio']:.1f}x; 100,000 steps x 5 trials take about {result['protocol_estimate_s']:.0f} s")
