@@ -13,9 +13,10 @@ that XLA cannot drop what is kept (every piece's output feeds the carry). Pieces
 
 - *noise*: :func:`training.online.draw_noise` for the chunk (slip ξ 64×2 per step — 16 draws of 32 ms ×
   2 wheels —, exploration, target draws);
-- *control*: u_p (egocentric), the winner search for u_p (Eq. 4.2–4.4: a partition for A(α), then an
-  argmin) and Eq. 4.5;
-- *kinematics*: quantise, 64 sub-steps of motor lag, slip and Euler integration (closed form, cumsums);
+- *control*: u_p (egocentric), the winner search for u_p (Eq. 4.2–4.4, nearest first:
+  :func:`ekm.kohonen.winner`) and Eq. 4.5;
+- *kinematics*: quantise, 64 sub-steps of motor lag, slip and Euler integration (closed form, cumsums;
+  the new pose only, :func:`robots.kinematics.advance_pose`);
 - *learn winner*: the winner search for the displacement v;
 - *neighbourhood*: G(k, i) over the N² lattice (Eq. 4.7);
 - *update*: Δw (Eq. 4.7) and ΔM (Eq. 4.9) over all neurons;
@@ -44,7 +45,7 @@ from ekm import maps  # noqa: E402
 from ekm.config import EKMConfig  # noqa: E402
 from ekm.kohonen import neighbourhood, update_inputs, winner  # noqa: E402
 from ekm.charts import model_input  # noqa: E402
-from robots.kinematics import advance, egocentric, quantize_command  # noqa: E402
+from robots.kinematics import advance_pose, egocentric, quantize_command  # noqa: E402
 from robots.params import KHEPERA  # noqa: E402
 from training.online import TrainConfig, Trainee, draw_noise, start, train_chunk, train_step  # noqa: E402
 
@@ -66,7 +67,7 @@ def variant_step(s: Trainee, draws, t, cfg, tcfg, params, parts: frozenset):
         c_p = 0.01 * u  # keeps u (and the pose) live
     c_sent = quantize_command(c_p + explore * cfg.c_max * xi_explore, params, jnp)
     if "kinematics" in parts:
-        robot, _ = advance(s.robot, c_sent, xi_act, n, params, jnp)
+        robot = advance_pose(s.robot, c_sent, xi_act, n, params, jnp)
     else:
         robot = s.robot._replace(pose=s.robot.pose + jnp.concatenate([0.001 * c_sent, xi_act[0, :1]]))
     v = egocentric(s.robot.pose, robot.pose[:2], jnp)
