@@ -22,9 +22,9 @@ def wrap_once(a):
     at most one turn — bit for bit, without the ``mod``.
 
     ``mod(x, 2π)`` of x = π - a ∈ [-π, 3π] is x, x - 2π or x + 2π, and each is what ``mod`` returns
-    (x - 2π is exact for x ≥ 2π; x + 2π is the same rounded sum ``mod`` adds). XLA's CPU ``mod`` costs
-    about 15× this on the training step's (trials, N²) angles (docs/speed.md). The turn is selected rather
-    than added as a constant so that XLA cannot fold it into π - a (that would round differently).
+    (x - 2π is exact for x ≥ 2π; x + 2π is the same rounded sum ``mod`` adds). XLA's CPU ``mod`` is many
+    times slower than this select (docs/speed.md, third round). The turn is selected rather than added
+    as a constant so that XLA cannot fold it into π - a (that would round differently).
     """
     x = jnp.pi - a
     turn = 2.0 * jnp.pi
@@ -110,9 +110,9 @@ def winner(w, u, cfg: EKMConfig):
     Searched nearest first: the neuron of least D² not yet ruled out wins if it is in A(α), i.e. fewer
     than ``a_size`` neurons lie strictly nearer in angle. If it is not, neither is any neuron at least as
     far in angle, and all of those are ruled out. The first one found in A(α) is
-    :func:`winner_by_partition`'s winner, ties included; in training it is the first one tried in 92 %
-    of searches and the loop runs at most a few times. Ordering all N² angles for A(α) instead — a
-    ``TopK`` kernel — cost half a training step (docs/speed.md).
+    :func:`winner_by_partition`'s winner, ties included, and in training it is usually the first one
+    tried. Ordering all N² angles for A(α) instead (a ``TopK`` kernel) was the largest cost of a
+    training step (docs/speed.md, third round).
 
     The loop ends: each round rules out at least its candidate, and the neuron nearest in angle is in
     A(α). It also ends when every neuron left is at D² = ∞ (an overflowing input), where the definition's

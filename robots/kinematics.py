@@ -108,8 +108,8 @@ def advance(state: RobotState, setpoint, noise, n: int, params: RobotParams = KH
 
 
 def advance_pose(state: RobotState, setpoint, noise, n: int, params: RobotParams = KHEPERA, xp=np) -> RobotState:
-    """:func:`advance`'s new state alone, bit for bit, without building the trace — training needs only
-    the pose at the end of the period (building and wrapping the trace was a tenth of a training step)."""
+    """:func:`advance`'s new state alone, bit for bit, without building and wrapping the trace: training
+    needs only the pose at the end of the period."""
     x, y, heading, wheels = _integrate(state, setpoint, noise, n, params, xp)
     pose = xp.stack([x[..., -1], y[..., -1], wrap_angle(heading[..., -1], xp)], axis=-1)
     return RobotState(pose=pose, wheels=wheels)

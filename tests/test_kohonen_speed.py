@@ -45,7 +45,7 @@ def weights(kind: str, cfg: EKMConfig, rng):
     return np.stack([rng.uniform(-np.pi, np.pi, cfg.size), rng.uniform(0, 0.2, cfg.size)], -1).astype(np.float32)
 
 
-@pytest.mark.parametrize("neurons, priority", [(15, None), (15, 1), (15, 2), (15, 50), (15, 224), (4, 3), (2, 1)])
+@pytest.mark.parametrize("neurons, priority", [(15, None), (15, 1), (15, 2), (15, 50), (15, 224), (15, 225), (4, 3), (2, 1)])
 @pytest.mark.parametrize("kind", ["grid", "coarse", "random"])
 def test_the_nearest_first_search_finds_the_winner_of_the_definition(neurons, priority, kind):
     cfg = EKMConfig(neurons=neurons, priority=priority)
