@@ -6,6 +6,8 @@ distance d. Rows wrap around (direction is an angle), so the lattice is a cylind
 
 from __future__ import annotations
 
+from functools import partial
+
 import jax
 import jax.numpy as jnp
 
@@ -122,10 +124,16 @@ def winner(w, u, cfg: EKMConfig):
     dist2 = cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
     if cfg.a_size >= cfg.size:
         return jnp.argmin(dist2)
-    dalpha = jnp.abs(diff[:, 0])
+    return _nearest_in_a(jnp.abs(diff[:, 0]), dist2, cfg.a_size)
+
+
+@partial(jax.jit, static_argnames="a_size")
+def _nearest_in_a(dalpha, dist2, a_size: int):
+    """The search of :func:`winner` over |α - α_i| ``dalpha`` and D² ``dist2``. Jitted so that called
+    eagerly its loop is traced once, not at every call (inside a jitted caller it is inlined)."""
 
     def found(k, d2):
-        return (jnp.sum(dalpha < dalpha[k]) < cfg.a_size) | (d2 == jnp.inf)
+        return (jnp.sum(dalpha < dalpha[k]) < a_size) | (d2 == jnp.inf)
 
     def rule_out(carry):  # every neuron at least as far in angle as k is out; those nearer were never out
         k, _ = carry

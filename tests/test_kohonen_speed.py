@@ -74,3 +74,14 @@ def test_the_search_ends_on_a_nan_input():
     for u in ([np.nan, 0.1], [0.3, np.nan], [np.nan, np.nan]):
         k = int(jax.jit(lambda x: winner(w, x, cfg))(jnp.asarray(u, jnp.float32)))
         assert 0 <= k < cfg.size
+
+
+def test_the_search_called_eagerly_is_traced_once_not_at_every_call():
+    from ekm.kohonen import _nearest_in_a
+
+    cfg = EKMConfig(neurons=7, priority=5)  # a size no other test uses, so the count starts here
+    w = initial_weights(cfg)
+    before = _nearest_in_a._cache_size()
+    for a in np.linspace(-3, 3, 20):
+        winner(w, jnp.asarray([a, 0.05], jnp.float32), cfg)
+    assert _nearest_in_a._cache_size() == before + 1
