@@ -94,7 +94,8 @@ def scaled(u, cfg: EKMConfig):
 
 
 def relative(u, w, cfg: EKMConfig):
-    """u - w_i for every neuron ``(N², 2)`` in map units, with the angle difference wrapped.
+    """u - w_i for every neuron ``(N², 2)`` in map units, with the angle difference wrapped. Both angles
+    must lie in [-π, π] (:func:`wrap_once`); inputs and weights always do (map files are checked).
 
     Built from its two components: writing the wrapped angle into a copy of the difference (``.at[].set``)
     gave the same values through a scatter that cost a tenth of a training step (docs/speed.md)."""
@@ -120,11 +121,16 @@ def winner(w, u, cfg: EKMConfig):
     A(α). It also ends when every neuron left is at D² = ∞ (an overflowing input), where the definition's
     ``argmin`` gives the first neuron, as ``argmin`` of the all-∞ rest does; a NaN input ends it at once.
     """
-    diff = relative(u, w, cfg)
-    dist2 = cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
+    dalpha, dist2 = _distances(w, u, cfg)
     if cfg.a_size >= cfg.size:
         return jnp.argmin(dist2)
-    return _nearest_in_a(jnp.abs(diff[:, 0]), dist2, cfg.a_size)
+    return _nearest_in_a(dalpha, dist2, cfg.a_size)
+
+
+def _distances(w, u, cfg: EKMConfig):
+    """|α - α_i| and D² of Eq. 4.3 for every neuron, in map units, angles wrapped."""
+    diff = relative(u, w, cfg)
+    return jnp.abs(diff[:, 0]), cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
 
 
 @partial(jax.jit, static_argnames="a_size")
@@ -148,10 +154,8 @@ def _nearest_in_a(dalpha, dist2, a_size: int):
 def winner_by_partition(w, u, cfg: EKMConfig):
     """:func:`winner` by its definition: A(α) from a partition of all |α - α_i|, then the least D² in it.
     The reference the search is tested against; ties at A(α)'s boundary are kept (Eq. 4.4 holds for them)."""
-    diff = relative(u, w, cfg)
-    dalpha = jnp.abs(diff[:, 0])
+    dalpha, dist2 = _distances(w, u, cfg)
     in_a = dalpha <= jnp.partition(dalpha, cfg.a_size - 1)[cfg.a_size - 1]
-    dist2 = cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
     return jnp.argmin(jnp.where(in_a, dist2, jnp.inf))
 
 
