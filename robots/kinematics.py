@@ -17,16 +17,19 @@ Model (DESIGN §2), per control period of ``n`` sub-steps of ``dt``:
    ``p_{j+1} = p_j + v_j (cos θ_j, sin θ_j) dt`` with ``v = (v_l + v_r)/2``, ``ω = (v_r - v_l)/b``.
 
 Sub-steps are evaluated in closed form with cumulative sums — there is no Python or ``lax`` loop
-inside one control period.
+inside one control period. Training's hot loop (:func:`advance_pose`) evaluates the headings' sines and
+cosines with vectorised polynomials in JAX (:func:`robots.trig.sincos`).
 """
 
 from __future__ import annotations
 
+from functools import partial
 from typing import NamedTuple
 
 import numpy as np
 
 from robots.params import KHEPERA, RobotParams
+from robots.trig import sincos
 
 
 class RobotState(NamedTuple):
@@ -100,32 +103,36 @@ def advance(state: RobotState, setpoint, noise, n: int, params: RobotParams = KH
 
     Returns ``(new_state, trace)`` where ``trace`` ``(..., n, 3)`` holds the pose after every sub-step
     (``trace[..., -1, :] == new_state.pose``, headings wrapped to (-π, π]); path lengths and
-    first-passage times are read from it.
+    first-passage times are read from it. Headings' sines and cosines are the array library's own: the ch. 6.1
+    test measures with this, and its figures stay comparable from one version to the next.
     """
-    x, y, heading, wheels = _integrate(state, setpoint, noise, n, params, xp)
+    dx, dy, heading, wheels = _substeps(state, setpoint, noise, n, params, xp, lambda a: (xp.sin(a), xp.cos(a)))
+    x = state.pose[..., 0:1] + xp.cumsum(dx, axis=-1)
+    y = state.pose[..., 1:2] + xp.cumsum(dy, axis=-1)
     trace = xp.stack([x, y, wrap_angle(heading, xp)], axis=-1)
     return RobotState(pose=trace[..., -1, :], wheels=wheels), trace
 
 
 def advance_pose(state: RobotState, setpoint, noise, n: int, params: RobotParams = KHEPERA, xp=np) -> RobotState:
-    """:func:`advance`'s new state alone, bit for bit, without building and wrapping the trace: training
-    needs only the pose at the end of the period."""
-    x, y, heading, wheels = _integrate(state, setpoint, noise, n, params, xp)
-    pose = xp.stack([x[..., -1], y[..., -1], wrap_angle(heading[..., -1], xp)], axis=-1)
+    """:func:`advance`'s new state alone, for training's hot loop, which needs only the pose at the end of the
+    period: no trace, the sub-steps' displacements summed rather than accumulated, and in JAX the headings'
+    sines and cosines from :func:`robots.trig.sincos`. The end position can differ from :func:`advance`'s
+    in the last bits (within 1e-6 m, ``tests/test_kinematics.py``); heading and wheels are the same."""
+    dx, dy, heading, wheels = _substeps(state, setpoint, noise, n, params, xp, partial(sincos, xp=xp))
+    pose = xp.stack([state.pose[..., 0] + xp.sum(dx, axis=-1), state.pose[..., 1] + xp.sum(dy, axis=-1),
+                     wrap_angle(heading[..., -1], xp)], axis=-1)
     return RobotState(pose=pose, wheels=wheels)
 
 
-def _integrate(state: RobotState, setpoint, noise, n: int, params: RobotParams, xp):
-    """Positions x, y and unwrapped headings ``(..., n)`` after each sub-step (explicit Euler, in closed form
-    with cumulative sums), and the wheel speeds at the end."""
+def _substeps(state: RobotState, setpoint, noise, n: int, params: RobotParams, xp, sin_cos):
+    """Explicit Euler in closed form: the displacements dx, dy ``(..., n)`` of each sub-step, the unwrapped
+    headings ``(..., n)`` after each, and the wheel speeds at the end. ``sin_cos(a)`` gives ``(sin a, cos a)``."""
     dt = params.dt
     v, omega, wheels = motor_twist(state.wheels, setpoint, noise, n, params, xp)  # (..., n) each
     theta0 = state.pose[..., 2:3]
     heading_inc = xp.cumsum(omega * dt, axis=-1)  # θ_{j+1} - θ_0
-    theta_before = theta0 + heading_inc - omega * dt  # θ_j, heading during sub-step j
-    x = state.pose[..., 0:1] + xp.cumsum(v * xp.cos(theta_before) * dt, axis=-1)
-    y = state.pose[..., 1:2] + xp.cumsum(v * xp.sin(theta_before) * dt, axis=-1)
-    return x, y, theta0 + heading_inc, wheels
+    sin, cos = sin_cos(theta0 + heading_inc - omega * dt)  # θ_j, heading during sub-step j
+    return v * cos * dt, v * sin * dt, theta0 + heading_inc, wheels
 
 
 def step(state: RobotState, command, noise, n: int, params: RobotParams = KHEPERA, xp=np):
