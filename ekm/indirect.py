@@ -54,10 +54,20 @@ def command(ekm: IndirectEKM, u, k, cfg: EKMConfig):
     their activity, which need not be the neuron nearest ``u``.
     """
     Mk, wk = ekm.M[k], ekm.w[k]
-    c_u = Mk @ model_input(u, wk, cfg)
-    c_w = Mk @ model_input(wk, wk, cfg)
+    c_u = apply(Mk, model_input(u, wk, cfg))
+    c_w = apply(Mk, model_input(wk, wk, cfg))
     feasible = jnp.all(jnp.abs(c_u) <= cfg.c_max)
     return jnp.where(feasible, c_u, c_w)
+
+
+def apply(M, u):
+    """M u for control matrices ``M`` ``(..., 2, 2)`` and inputs ``u`` ``(..., 2)``: the command of Eq. 4.1.
+
+    Written out as two products and a sum: as a ``dot`` (``M @ u``, ``einsum``) XLA's CPU back-end runs it as
+    a batched 2×2 matrix product, a kernel of its own that cost more than the arithmetic around it
+    (docs/speed.md, fourth round). The sum rounds differently from the dot in the last bit.
+    """
+    return M[..., 0] * u[..., None, 0] + M[..., 1] * u[..., None, 1]
 
 
 def update(ekm: IndirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> IndirectEKM:
@@ -69,6 +79,6 @@ def update(ekm: IndirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> IndirectEKM:
     k = winner(ekm.w, v, cfg)
     g = neighbourhood(cfg, k, sigma)
     v_loc = model_input(v, ekm.w, cfg)  # (N², 2)
-    err = c_p[None, :] - jnp.einsum("nij,nj->ni", ekm.M, v_loc)
+    err = c_p[None, :] - apply(ekm.M, v_loc)
     M = ekm.M + (eta * g)[:, None, None] * err[:, :, None] * v_loc[:, None, :]
     return IndirectEKM(w=update_inputs(ekm.w, v, g, eta, cfg), M=M)
