@@ -105,12 +105,20 @@ def train_step(s: Trainee, draws, t, cfg: EKMConfig, tcfg: TrainConfig, params: 
 
 
 def draw_noise(key, length: int, params: RobotParams = KHEPERA):
-    """All randomness of ``length`` training steps, drawn up front: slip ξ ``(length, K, 2)`` in [-1, 1]
+    """All randomness of ``length`` training steps, drawn up front: slip ξ ``(length, K, 2)`` in (-1, 1)
     (:func:`robots.kinematics.slip`), exploration ξ ``(length, 2)`` standard normal, and U[0, 1)²
-    ``(length, 2)`` for the next target."""
+    ``(length, 2)`` for the next target.
+
+    Each slip ξ is the centre of one of 2¹⁶ equal bins of (-1, 1), from half of a 32-bit draw: the two
+    wheels share one draw, which halves the random bits generated, the bulk of the chunk's noise (docs/speed.md,
+    fourth round). Its resolution, 1.5e-6 of a wheel's speed, is far below the 8 mm/s speed unit.
+    """
     k1, k2, k3 = jax.random.split(key, 3)
-    return (jax.random.uniform(k1, (length,) + params.noise_shape(params.target_period), minval=-1.0, maxval=1.0),
-            jax.random.normal(k2, (length, 2)), jax.random.uniform(k3, (length, 2)))
+    draws = (length, params.noise_shape(params.target_period)[0])  # one per noise period, both wheels
+    bits = jax.random.bits(k1, draws, jnp.uint32)
+    halves = jnp.stack([bits >> 16, bits & 0xFFFF], axis=-1).astype(jnp.float32)
+    return ((halves + 0.5) * (2.0 / 65536.0) - 1.0, jax.random.normal(k2, (length, 2)),
+            jax.random.uniform(k3, (length, 2)))
 
 
 @partial(jax.jit, static_argnames=("length", "cfg", "tcfg", "params"))
