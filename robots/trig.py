@@ -1,12 +1,12 @@
 """Sine and cosine of many headings at once, vectorised for XLA's CPU back-end.
 
-XLA's CPU ``sin`` and ``cos`` cost 3–4 ns an element each, where the arithmetic around them costs a fraction
-of a nanosecond (``python benchmarks/trig_kernels.py``). Training's kinematics evaluate both for every one
+XLA's CPU ``sin`` and ``cos`` cost several nanoseconds an element, where the arithmetic around them costs a
+fraction of one. Training's kinematics evaluate both for every one
 of the 64 sub-steps of a control period, in every trial of every step
 (:func:`robots.kinematics.advance_pose`), and they were the largest kernels of a training step
 (docs/speed.md, fourth round). :func:`sincos` evaluates them with
 the Cephes single-precision polynomials (S. L. Moshier, ``sinf.c``/``cosf.c``) in plain arithmetic, which
-XLA fuses and vectorises: about 0.8 ns for the pair.
+XLA fuses and vectorises: the pair costs about a ninth of XLA's (``python benchmarks/trig_kernels.py``).
 """
 
 from __future__ import annotations

@@ -125,6 +125,10 @@ def test_draw_noise_shapes_and_ranges():
     slip, explore, target = draw_noise(jax.random.PRNGKey(0), 500)
     assert slip.shape == (500, 32, 2) and explore.shape == (500, 2) and target.shape == (500, 2)
     assert -1.0 <= float(slip.min()) < -0.99 and 0.99 < float(slip.max()) <= 1.0
+    bins = (np.asarray(slip, np.float64) + 1.0) * 32768.0 - 0.5  # centres of 2^16 equal bins of (-1, 1)
+    np.testing.assert_array_equal(bins, np.round(bins))
+    assert abs(float(slip.mean())) < 0.01 and float(slip.var()) == pytest.approx(1 / 3, abs=0.01)
+    assert abs(np.corrcoef(np.asarray(slip[..., 0]).ravel(), np.asarray(slip[..., 1]).ravel())[0, 1]) < 0.02
     assert 0.0 <= float(target.min()) < 0.01 and 0.99 < float(target.max()) < 1.0
     assert abs(float(explore.mean())) < 0.1 and float(explore.std()) == pytest.approx(1.0, abs=0.05)
 
