@@ -4,8 +4,10 @@ Each decays exponentially from its start to its end value over a fraction of the
 at the end value: x(t) = x0 (x1/x0)^min(t/(f·T), 1). The thesis gives only "a constant learning rate"
 (Eq. 4.7) and no widths. The defaults were chosen on the full ch. 6.1 protocol (15×15, 5 trials ×
 100k steps, 50 test targets, Webots slip noise); with them the indirect map (signed chart,
-``ekm.charts``) ends at E = 1.29, 1.24, 1.36 mm and T(25) = 7.82, 7.88, 7.93 steps/m for training seeds
-0, 1, 2 (``python benchmarks/protocol_ch61.py --seed S``). Alternatives below: seed 0, signed chart.
+``ekm.charts``) ends at E = 1.36, 1.18, 1.26 mm and T(25) = 7.85, 8.03, 7.90 steps/m for training seeds
+0, 1, 2 (``python benchmarks/protocol_ch61.py --seed S``). Alternatives below: seed 0, signed chart, measured
+before training's noise draws and arithmetic changed (docs/speed.md, fourth round), when the defaults gave
+E = 1.29, 1.24, 1.36 mm and T(25) = 7.82, 7.88, 7.93.
 
 - η 0.1 → 0.005 over the first 60 %: in map units |ũ|² ≤ 2, and η ≥ 0.5 makes Eq. 4.9 overshoot so that
   the lattice collapses; 0.1 learns within ~10k steps, the decay then averages out the noise.
