@@ -1,23 +1,22 @@
 """Sine and cosine of many headings at once, vectorised for XLA's CPU back-end.
 
 XLA's CPU ``sin`` and ``cos`` cost several nanoseconds an element, where the arithmetic around them costs a
-fraction of one. Training's kinematics evaluate both for every one
-of the 64 sub-steps of a control period, in every trial of every step
-(:func:`robots.kinematics.advance_pose`), and they were the largest kernels of a training step
-(docs/speed.md, fourth round). :func:`sincos` evaluates them with
-the Cephes single-precision polynomials (S. L. Moshier, ``sinf.c``/``cosf.c``) in plain arithmetic, which
-XLA fuses and vectorises: the pair costs about a ninth of XLA's (``python benchmarks/trig_kernels.py``).
+fraction of one. Training's kinematics evaluate both for every one of the 64 sub-steps of a control
+period, in every trial of every step (:func:`robots.kinematics.advance_pose`), and they were the largest
+kernels of a training step (docs/speed.md, fourth round). :func:`sincos` evaluates them with the Cephes
+single-precision polynomials (S. L. Moshier, ``sinf.c``/``cosf.c``) in plain arithmetic, which XLA fuses
+and vectorises: the pair costs about a ninth of XLA's (``python benchmarks/trig_kernels.py``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-# Cody–Waite reduction: π/4 as the sum of three floats, so that a - jπ/4 stays exact for j up to 2¹³.
+# Cody–Waite reduction: π/4 as the sum of three floats, so that a - jπ/4 keeps its accuracy up to LIMIT.
 _PI4 = (0.78515625, 2.4187564849853515625e-4, 3.77489497744594108e-8)
 _SIN = (-1.9515295891e-4, 8.3321608736e-3, -1.6666654611e-1)  # sin z = z + z³ P(z²), |z| ≤ π/4
 _COS = (2.443315711809948e-5, -1.388731625493765e-3, 4.166664568298827e-2)  # cos z = 1 - z²/2 + z⁴ Q(z²)
-LIMIT = 8192.0  # |a| up to which the reduction is exact; headings stay within a few turns of zero
+LIMIT = 8192.0  # Cephes' bound for |a|; training's headings stay within a few turns of zero
 
 
 def sincos(a, xp=np):
