@@ -119,7 +119,10 @@ def advance_pose(state: RobotState, setpoint, noise, n: int, params: RobotParams
     sines and cosines from :func:`robots.trig.sincos`. The end position can differ from :func:`advance`'s
     in the last bits (within 1e-6 m, ``tests/test_kinematics.py``); heading and wheels are the same."""
     dx, dy, heading, wheels = _substeps(state, setpoint, noise, n, params, xp, partial(sincos, xp=xp))
-    pose = xp.stack([state.pose[..., 0] + xp.sum(dx, axis=-1), state.pose[..., 1] + xp.sum(dy, axis=-1),
+    # Both sums in one reduction: as two, XLA evaluated the sub-steps' motion (lag, slip, sines, cosines)
+    # once for each (docs/speed.md, fourth round).
+    shift = xp.sum(xp.stack([dx, dy], axis=-2), axis=-1)
+    pose = xp.stack([state.pose[..., 0] + shift[..., 0], state.pose[..., 1] + shift[..., 1],
                      wrap_angle(heading[..., -1], xp)], axis=-1)
     return RobotState(pose=pose, wheels=wheels)
 
