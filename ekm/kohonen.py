@@ -99,8 +99,13 @@ def relative(u, w, cfg: EKMConfig):
 
     Built from its two components: writing the wrapped angle into a copy of the difference (``.at[].set``)
     gave the same values through a scatter that cost a tenth of a training step (docs/speed.md)."""
-    diff = u - w
-    return jnp.stack([wrap_once(diff[..., 0]), diff[..., 1]], axis=-1) / units(cfg)
+    return jnp.stack(_relative_parts(u, w, cfg), axis=-1)
+
+
+def _relative_parts(u, w, cfg: EKMConfig):
+    """The two columns of :func:`relative`, (α - α_i)/π wrapped and (d - d_i)/d_scale, each ``(N²,)``."""
+    unit = units(cfg)
+    return wrap_once(u[..., 0] - w[..., 0]) / unit[0], (u[..., 1] - w[..., 1]) / unit[1]
 
 
 def winner(w, u, cfg: EKMConfig):
@@ -128,9 +133,11 @@ def winner(w, u, cfg: EKMConfig):
 
 
 def _distances(w, u, cfg: EKMConfig):
-    """|α - α_i| and D² of Eq. 4.3 for every neuron, in map units, angles wrapped."""
-    diff = relative(u, w, cfg)
-    return jnp.abs(diff[:, 0]), cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
+    """|α - α_i| and D² of Eq. 4.3 for every neuron, in map units, angles wrapped. From the components of
+    :func:`relative`, not its stacked array: XLA then wrote that array out in a kernel of its own, twice a
+    training step (docs/speed.md, fourth round)."""
+    dalpha, dd = _relative_parts(u, w, cfg)
+    return jnp.abs(dalpha), cfg.gamma_alpha * dalpha ** 2 + cfg.gamma_d * dd ** 2
 
 
 @partial(jax.jit, static_argnames="a_size")
