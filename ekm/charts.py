@@ -49,7 +49,9 @@ def signed(u, cfg: EKMConfig):
 
 def model_input(u, w, cfg: EKMConfig):
     """ũ of input ``u`` = (α, d) for the linear model of each neuron weight in ``w`` ``(..., 2)``, in
-    ``cfg.chart``; the result has the shape of ``w``."""
+    ``cfg.chart``; the result broadcasts against ``w``. The polar chart's depends on each weight and has the
+    shape of ``w``; the signed chart's does not and keeps the shape of ``u`` — broadcast to every neuron,
+    XLA wrote it out in a kernel of its own every training step (docs/speed.md, fourth round)."""
     if cfg.chart == "polar":
         return polar(u, w, cfg)
-    return jnp.broadcast_to(signed(u, cfg), jnp.shape(w))
+    return signed(u, cfg)

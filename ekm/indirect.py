@@ -78,7 +78,7 @@ def update(ekm: IndirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> IndirectEKM:
     """
     k = winner(ekm.w, v, cfg)
     g = neighbourhood(cfg, k, sigma)
-    v_loc = model_input(v, ekm.w, cfg)  # (N², 2)
+    v_loc = model_input(v, ekm.w, cfg)  # (N², 2), or (2,) in the signed chart (the same for every neuron)
     err = c_p[None, :] - apply(ekm.M, v_loc)
-    M = ekm.M + (eta * g)[:, None, None] * err[:, :, None] * v_loc[:, None, :]
+    M = ekm.M + (eta * g)[:, None, None] * err[:, :, None] * v_loc[..., None, :]
     return IndirectEKM(w=update_inputs(ekm.w, v, g, eta, cfg), M=M)

@@ -54,10 +54,13 @@ def test_one_inverse_on_the_signed_chart_reaches_targets_ahead_and_behind(alpha)
 
 
 def test_model_input_gives_one_row_per_neuron_in_either_chart():
+    """The polar chart's input has a row per neuron; the signed chart's is one row, the same for all."""
     w = initial_weights(CFG)
     u = jnp.asarray([2.8, 0.05])
-    assert model_input(u, w, CFG).shape == w.shape
+    assert np.broadcast_shapes(model_input(u, w, CFG).shape, w.shape) == w.shape
+    np.testing.assert_array_equal(np.asarray(model_input(u, w, CFG)), np.asarray(signed(u, CFG)))
     polar_cfg = EKMConfig(chart="polar")
+    assert model_input(u, w, polar_cfg).shape == w.shape
     np.testing.assert_allclose(np.asarray(model_input(u, w[:1], polar_cfg))[0], np.asarray(polar(u, w[0], polar_cfg)))
     with pytest.raises(ValueError, match="chart must be"):
         EKMConfig(chart="cartesian")
