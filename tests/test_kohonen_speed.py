@@ -68,6 +68,16 @@ def test_the_search_finds_the_definitions_winner_on_the_shipped_maps(chart):
     np.testing.assert_array_equal(np.asarray(fast(maps.ekm.w, u)), np.asarray(slow(maps.ekm.w, u)))
 
 
+def test_neurons_whose_distance_overflows_do_not_end_the_search_early():
+    """Only the neurons beyond reach overflow D² (= ∞): the nearest neuron by D² (0) is outside A(α) (|A| = 1),
+    and the search must go on to the one nearest in angle (1), not stop because some D² is infinite."""
+    cfg = EKMConfig(neurons=2, priority=1)
+    w = jnp.asarray([[0.5, 0.1], [0.0, 0.5], [3.0, 1e30], [3.0, 1e30]], jnp.float32)
+    u = jnp.asarray([0.0, 0.1], jnp.float32)
+    assert int(winner_by_partition(w, u, cfg)) == 1
+    assert int(winner(w, u, cfg)) == int(jax.jit(winner, static_argnames="cfg")(w, u, cfg)) == 1
+
+
 def test_the_search_ends_on_a_nan_input():
     cfg = EKMConfig()
     w = initial_weights(cfg)
