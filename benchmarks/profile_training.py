@@ -43,8 +43,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ekm import maps  # noqa: E402
 from ekm.config import EKMConfig  # noqa: E402
-from ekm.kohonen import neighbourhood, update_inputs, winner  # noqa: E402
-from ekm.charts import model_input  # noqa: E402
+from ekm import indirect  # noqa: E402
+from ekm.kohonen import neighbourhood, winner  # noqa: E402
 from robots.kinematics import advance_pose, egocentric, quantize_command  # noqa: E402
 from robots.params import KHEPERA  # noqa: E402
 from training.online import TrainConfig, Trainee, draw_noise, start, train_chunk, train_step  # noqa: E402
@@ -82,10 +82,7 @@ def variant_step(s: Trainee, draws, t, cfg, tcfg, params, parts: frozenset):
         g = jnp.zeros(cfg.size, jnp.float32).at[k].set(sigma)
     if "update" in parts:
         if cfg.mapping == "indirect":
-            v_loc = model_input(v, ekm.w, cfg)
-            err = c_p[None, :] - jnp.einsum("nij,nj->ni", ekm.M, v_loc)
-            M = ekm.M + (eta * g)[:, None, None] * err[:, :, None] * v_loc[:, None, :]
-            ekm = ekm._replace(w=update_inputs(ekm.w, v, g, eta, cfg), M=M)
+            ekm = indirect.learn(ekm, v, c_p, eta, g, cfg)
         else:
             ekm = maps.update(ekm, v, c_sent, eta, sigma, cfg) if "neighbourhood" in parts else \
                 jax.tree.map(lambda a: a + eta * g.sum() * 1e-9, ekm)

@@ -71,13 +71,16 @@ def apply(M, u):
 
 
 def update(ekm: IndirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> IndirectEKM:
-    """One self-organising step (ch. 4.3) from the executed command ``c_p`` and displacement ``v``.
-
-    k = winner for v (step 4); Δw_i = η G(k,i)(v - w_i) (Eq. 4.7);
-    ΔM_i = η G(k,i)(c_p - M_i ṽ) ṽᵀ (Eq. 4.9, gradient descent on Eq. 4.8), ṽ local to each neuron.
-    """
+    """One self-organising step (ch. 4.3) from the executed command ``c_p`` and displacement ``v``:
+    k = winner for v (step 4), then :func:`learn` with the neighbourhood G(k, ·) of width ``sigma``."""
     k = winner(ekm.w, v, cfg)
-    g = neighbourhood(cfg, k, sigma)
+    return learn(ekm, v, c_p, eta, neighbourhood(cfg, k, sigma), cfg)
+
+
+def learn(ekm: IndirectEKM, v, c_p, eta, g, cfg: EKMConfig) -> IndirectEKM:
+    """Steps 5–6 of ch. 4.3 for neighbourhood weights ``g`` ``(N²,)``: Δw_i = η g_i (v - w_i) (Eq. 4.7);
+    ΔM_i = η g_i (c_p - M_i ṽ) ṽᵀ (Eq. 4.9, gradient descent on Eq. 4.8), ṽ local to each neuron.
+    (``benchmarks/profile_training.py`` times it with stand-ins for the winner and G.)"""
     v_loc = model_input(v, ekm.w, cfg)  # (N², 2), or (2,) in the signed chart (the same for every neuron)
     err = c_p[None, :] - apply(ekm.M, v_loc)
     M = ekm.M + (eta * g)[:, None, None] * err[:, :, None] * v_loc[..., None, :]
