@@ -48,9 +48,7 @@ def per_step_us(f, x, n: int = 2000) -> float:
 def counted_search(rule_out_all: bool, rounds: list):
     """:func:`kohonen.winner` that records its loop's rounds; ``rule_out_all`` False: one neuron a round."""
     def search(w, u, cfg):
-        diff = kohonen.relative(u, w, cfg)
-        dist2 = cfg.gamma_alpha * diff[:, 0] ** 2 + cfg.gamma_d * diff[:, 1] ** 2
-        dalpha = jnp.abs(diff[:, 0])
+        dalpha, dist2 = kohonen._distances(w, u, cfg)
 
         def found(k, d2):
             return (jnp.sum(dalpha < dalpha[k]) < cfg.a_size) | (d2 == jnp.inf)
