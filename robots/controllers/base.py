@@ -74,13 +74,14 @@ def sensor_angles(sensors: SensorSet) -> np.ndarray:
 
 
 def hit_points(pose, readings, angles, radius: float = KHEPERA.radius, xp=np):
-    """World positions ``(m, 2)`` of what each sensor (directions ``angles``, robot frame) sees — centre +
-    (radius + reading) along its ray — and a mask ``(m,)`` of the sensors that see something."""
+    """World positions ``(..., m, 2)`` of what each sensor (directions ``angles``, robot frame) sees — centre +
+    (radius + reading) along its ray — and a mask ``(..., m)`` of the sensors that see something, for poses
+    ``(..., 3)`` and their ``readings`` ``(..., m)``."""
     r = xp.asarray(readings)
     seen = xp.isfinite(r)
-    phi = pose[2] + xp.asarray(angles)
+    phi = pose[..., 2:3] + xp.asarray(angles)
     reach = radius + xp.where(seen, r, 0.0)
-    pts = xp.stack([pose[0] + reach * xp.cos(phi), pose[1] + reach * xp.sin(phi)], axis=-1)
+    pts = xp.stack([pose[..., 0:1] + reach * xp.cos(phi), pose[..., 1:2] + reach * xp.sin(phi)], axis=-1)
     return pts, seen
 
 
