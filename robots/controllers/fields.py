@@ -57,7 +57,7 @@ fields' equations and adds three things, each with its reason:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cache, partial
 from typing import NamedTuple
 
 import jax
@@ -179,6 +179,7 @@ class FieldState(NamedTuple):
     k: jax.Array
 
 
+@cache
 def init(p: FieldParams) -> FieldState:
     return FieldState(mem.empty(p.memory_points if p.form == "extended" else 1), jnp.asarray(0.0, jnp.float32),
                       jnp.asarray(0, jnp.int32), jnp.asarray(0, jnp.int32))

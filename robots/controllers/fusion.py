@@ -28,7 +28,7 @@ behind — cannot guard a robot that backs into what the avoidance turned it awa
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cache, partial
 from typing import NamedTuple
 
 import jax
@@ -76,6 +76,7 @@ class FusionState(NamedTuple):
     target_id: jax.Array  # the checkpoint c_p was computed for
 
 
+@cache
 def init() -> FusionState:
     return FusionState(jnp.zeros(2, jnp.float32), jnp.zeros((), jnp.float32), jnp.asarray(-1, jnp.int32))
 

@@ -52,7 +52,7 @@ Measured choices (rejected settings with numbers) are in ``docs/scenarios.md`` (
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cache, partial
 from typing import NamedTuple
 
 import jax
@@ -141,6 +141,7 @@ class Tick(NamedTuple):
     valid: jax.Array
 
 
+@cache
 def init(p: SambaParams) -> SambaState:
     return SambaState(mem.empty(p.memory_points), jnp.asarray(jnp.nan, jnp.float32))
 

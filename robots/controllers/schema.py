@@ -77,7 +77,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cache, partial
 from typing import NamedTuple
 
 import jax
@@ -133,6 +133,7 @@ class SchemaState(NamedTuple):
     due: jax.Array
 
 
+@cache
 def init(p: SchemaParams) -> SchemaState:
     """A fresh state: the first tick draws the first noise direction."""
     return SchemaState(jax.random.PRNGKey(p.seed), jnp.zeros((), jnp.float32), jnp.asarray(-jnp.inf, jnp.float32))
