@@ -195,3 +195,24 @@ def test_sensor_noise_is_ten_percent():
     sigma = math.sqrt(front.var(ddof=1) - TAU**2 / 12)
     assert sigma / d == pytest.approx(LONG_RANGE.noise, abs=0.01)
     assert front.mean() == pytest.approx(d, abs=0.001)  # unbiased
+
+
+def test_hit_points_of_many_poses_equal_one_pose_at_a_time():
+    """The runner turns a run's readings into world points in one batched call (RunRecord.hits): the same
+    bits as one call a tick, each point radius + reading from the centre along its sensor."""
+    from robots.controllers.base import hit_points
+
+    rng = np.random.default_rng(3)
+    poses = np.column_stack([rng.uniform(0, 1, 20), rng.uniform(0, 1, 20), rng.uniform(-np.pi, np.pi, 20)])
+    readings = rng.uniform(0, LONG_RANGE.range_m, (20, 12))
+    readings[rng.random((20, 12)) < 0.4] = np.inf
+    pts, seen = hit_points(poses, readings, LONG_RANGE.angles, R)
+    assert pts.shape == (20, 12, 2) and seen.shape == (20, 12) and 0 < seen.sum() < seen.size
+    for k in range(20):
+        one, one_seen = hit_points(poses[k], readings[k], LONG_RANGE.angles, R)
+        assert np.array_equal(pts[k], one) and np.array_equal(seen[k], one_seen)
+    distance = np.linalg.norm(pts - poses[:, None, :2], axis=-1)
+    np.testing.assert_allclose(distance[seen], (R + readings)[seen], rtol=0, atol=1e-12)
+    bearing = np.arctan2(*(pts - poses[:, None, :2])[..., ::-1].transpose(2, 0, 1))
+    off = (bearing - poses[:, 2:3] - np.asarray(LONG_RANGE.angles) + np.pi) % (2 * np.pi) - np.pi
+    np.testing.assert_allclose(off[seen], 0.0, atol=1e-9)
