@@ -32,8 +32,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a check
 
 from evaluation.pinning import pin_to_one_cpu  # noqa: E402
 
-WORLDS = ("three-rooms-static,three-rooms-moving,three-rooms-changed,extended-obstacle,concave-obstacle,three-rooms,"
-          "open-arena,moving-target").split(",")
 ARCHITECTURES = "fusion,fields,samba,schema"
 
 
@@ -45,7 +43,7 @@ def recorded_runs(seed: int) -> list:
     from ekm.data import load_default_map
     from evaluation.scenario import run_scenario
     from robots.controllers.spec import parse_architectures
-    from robots.worldfile import load_world
+    from robots.worldfile import load_world, named_worlds
 
     runs = []
     for spec in parse_architectures(ARCHITECTURES):
@@ -54,7 +52,7 @@ def recorded_runs(seed: int) -> list:
             controller = spec.build(jax.tree.map(lambda a: a[0], maps.ekm), maps.cfg)
         else:
             controller = spec.build()
-        for name in WORLDS:
+        for name in named_worlds():
             world = load_world(name)
             rec = run_scenario(world, controller, seed=seed)
             runs.append((world, controller.sensors, np.array([c[1:] for c in rec.commands]).reshape(-1, 2)))

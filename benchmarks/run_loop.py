@@ -6,7 +6,7 @@ Run from the repository root::
     python benchmarks/run_loop.py fields --rounds 6 &    # warm-up first, then prints "warm"
     sleep 25; py-spy record -p $! -r 1000 -d 15 -f raw -o fields.txt
 
-Each round runs seeds 0–2 on each of the eight named worlds with the architecture's shipped map, pinned to
+Each round runs seeds 0–2 on each named world with the architecture's shipped map, pinned to
 one CPU as ``ekm compare``'s workers run (:mod:`evaluation.pinning`). The warm-up (one run a world)
 compiles the controller before "warm" is printed, so that samples taken after it are of steady runs;
 the last line is the real-time factor of the timed rounds. A sampling profiler slows the run down far
@@ -25,14 +25,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a check
 
 from evaluation.pinning import pin_to_one_cpu  # noqa: E402
 
-WORLDS = ("three-rooms-static,three-rooms-moving,three-rooms-changed,extended-obstacle,concave-obstacle,three-rooms,"
-          "open-arena,moving-target").split(",")
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("architecture", help="one architecture as ekm run spells it, e.g. fields or samba:directions=36")
-    ap.add_argument("--rounds", type=int, default=4, help="timed rounds of 3 seeds x 8 worlds (default 4)")
+    ap.add_argument("--rounds", type=int, default=4, help="timed rounds of seeds 0-2 on every named world (default 4)")
     args = ap.parse_args(argv)
     if args.rounds < 1:
         ap.error("--rounds must be >= 1")
@@ -41,7 +37,7 @@ def main(argv=None) -> int:
     from ekm.errors import InputError
     from evaluation.scenario import run_architecture
     from robots.controllers.spec import parse_architectures
-    from robots.worldfile import load_world
+    from robots.worldfile import load_world, named_worlds
 
     try:
         specs = parse_architectures(args.architecture)
@@ -50,7 +46,7 @@ def main(argv=None) -> int:
     if len(specs) != 1:
         ap.error(f"architecture: give one, got {len(specs)}")
     spec = specs[0]
-    worlds = [load_world(name) for name in WORLDS]
+    worlds = [load_world(name) for name in named_worlds()]
     for world in worlds:
         run_architecture(world, spec, seed=0)
     print("warm", flush=True)
