@@ -32,9 +32,9 @@ def default_map(chart: str):
 
 
 def load_default_map(chart: str):
-    """:func:`ekm.mapfile.load_maps` of :func:`default_map`, read once per process: ``ekm compare`` drives a
-    shipped map in every run, and reading and checking the file took 2.3 ms of each (the maps are JAX
-    arrays, which nobody can change; the metadata is a fresh copy each call)."""
+    """:func:`ekm.mapfile.load_maps` of :func:`default_map`, read and checked once per process, since
+    ``ekm compare`` drives a shipped map in every run. The maps are JAX arrays, which cannot change; the
+    metadata is a fresh copy on each call."""
     saved = _load_default_map(chart)
     return dataclasses.replace(saved, meta=dict(saved.meta))
 

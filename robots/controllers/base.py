@@ -46,9 +46,10 @@ class Observation(NamedTuple):
 class Controller:
     """A ready-to-run architecture: its sensors, a fresh state and the jitted step.
 
-    ``init()`` returns the initial state pytree (each architecture's is cached: JAX arrays cannot change, so
-    every run may start from the same ones, and making them cost 1–1.5 ms a run); ``step(state, obs)``
-    returns ``(state, command)`` with ``command`` ``(2,)`` wheel speeds (m/s; the motors clip and round them, :mod:`robots.kinematics`).
+    ``init()`` returns the initial state pytree (each architecture caches its own: JAX arrays cannot change,
+    so every run may start from the same ones instead of building them again); ``step(state, obs)``
+    returns ``(state, command)`` with ``command`` ``(2,)`` wheel speeds (m/s; the motors clip and round
+    them, :mod:`robots.kinematics`).
     ``spec`` is the architecture with every parameter resolved (what ``ekm run --json`` reports);
     ``describe(state)`` optionally returns named arrays for plots (e.g. the neural fields of one tick).
     """
