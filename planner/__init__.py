@@ -18,7 +18,8 @@ pipeline), :mod:`planner.examples` (Fig. 3.3 as data, printer, random workspaces
 The planner depends on NumPy only (Matplotlib for :mod:`planner.plot`).
 """
 
-from planner.plan import DEFAULT_CELL, METHODS, NoRouteError, Plan, decompose, map_changed, plan, plan_bitmap, replan
+from planner.plan import (DEFAULT_CELL, METHODS, MIN_CELL, RULES, NoRouteError, Plan, decompose, map_changed, plan,
+                          plan_bitmap, replan)
 
-__all__ = ["DEFAULT_CELL", "METHODS", "NoRouteError", "Plan", "decompose", "map_changed", "plan", "plan_bitmap",
-           "replan"]
+__all__ = ["DEFAULT_CELL", "METHODS", "MIN_CELL", "NoRouteError", "Plan", "RULES", "decompose", "map_changed", "plan",
+           "plan_bitmap", "replan"]

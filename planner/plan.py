@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -21,6 +21,7 @@ from planner.graph import Graph, adjacency
 from planner.quadtree import label_quadtree
 from planner.search import shortest_route
 from planner.slippery import label_slippery
+from planner.visibility import visible_checkpoints
 from robots.params import KHEPERA
 
 #: The decompositions: slippery cells (ch. 3.2.2) and the two baselines of DESIGN §4.
@@ -29,9 +30,14 @@ METHODS = ("slippery", "quadtree", "grid")
 #: Default cell size (m): with the 25 mm cushion, a 0.12 m doorway of ``three-rooms`` keeps two free cells.
 DEFAULT_CELL = 0.02
 
+#: Checkpoint rules: ``visible`` (consecutive checkpoints see each other with the robot's clearance,
+#: :mod:`planner.visibility`, the default) and ``thesis`` (the greedy rule of ch. 3.2.3 as written).
+RULES = ("visible", "thesis")
+
 
 class NoRouteError(InputError):
-    """No sequence of adjacent cells joins the start to the goal on this map (a bad start/goal pair)."""
+    """No sequence of adjacent cells joins the start to the goal on this map, or the start or goal has no free
+    bitmap cell near it (a bad start/goal pair, or a cell too coarse for the map's narrow places)."""
 
 
 @dataclass(frozen=True)
@@ -48,15 +54,17 @@ class Plan:
     graph : the connectivity graph of the cells (:class:`planner.graph.Graph`).
     route : the cells from the start's to the goal's, in order (the ``path_cells`` of ``ekm plan --json``).
     start, goal : (x, y) in metres.
-    checkpoints : ``(len(route), 2)``: checkpoint ``i`` is on the boundary of ``route[i]`` and
-        ``route[i+1]``, the last is the goal (Fig. 3.6).
+    checkpoints : ``(k, 2)``, the goal last. ``rule="thesis"``: one per boundary crossed, checkpoint
+        ``i`` on the boundary of ``route[i]`` and ``route[i+1]`` (Fig. 3.6); ``rule="visible"``: the
+        corners of a path through the same cells whose legs keep the robot's clearance
+        (:mod:`planner.visibility`).
+    rule : the checkpoint rule, ``"visible"`` or ``"thesis"`` (:data:`RULES`).
 
-    The checkpoints are waypoints for the reactive layer, not a collision-free polyline: a slippery
-    cell need not be convex, so the straight leg between two checkpoints of one cell may cut a corner
-    of the cushion; the robot stays in the cell by moving towards the next checkpoint and sliding along
-    the cell's boundary (ch. 3.2.1). Quadtree and grid cells are convex, so their legs stay inside.
-    Two consecutive checkpoints can coincide where the route hops through a corner (see
-    :mod:`planner.search`); the reactive layer reaches such a checkpoint at once.
+    The thesis's checkpoints are waypoints for the reactive layer, not a collision-free polyline: a
+    slippery cell need not be convex, so the straight leg between two checkpoints of one cell may cut a
+    corner of the cushion — or, in a staircase of a cell, run through several walls. Two consecutive
+    thesis checkpoints can coincide where the route hops through a corner (see :mod:`planner.search`);
+    the reactive layer reaches such a checkpoint at once.
     """
 
     method: str
@@ -68,6 +76,7 @@ class Plan:
     start: tuple[float, float]
     goal: tuple[float, float]
     checkpoints: np.ndarray
+    rule: str = "thesis"
 
     @property
     def cells(self) -> int:
@@ -104,8 +113,8 @@ def plan_bitmap(W: np.ndarray, cell: float, start, goal, method: str = "slippery
     for name, p in (("start", start), ("goal", goal)):
         where[name] = free_cell_at(W, p, cell)
         if where[name] is None:
-            raise InputError(f"{name} {_fmt(p)}: no free bitmap cell within {cell} m (cell size {cell} m is too "
-                             "coarse here, or the point is walled in)")
+            raise NoRouteError(f"{name} {_fmt(p)}: no free bitmap cell within {cell} m (cell size {cell} m is too "
+                               "coarse here, or the point is walled in)")
     labels = decompose(W, method, seed=where["start"])
     graph = adjacency(labels, cell)
     start_cell, goal_cell = (int(labels[where[k]]) for k in ("start", "goal"))
@@ -118,49 +127,71 @@ def plan_bitmap(W: np.ndarray, cell: float, start, goal, method: str = "slippery
                 start=start, goal=goal, checkpoints=checkpoints)
 
 
+#: The finest cell (m) that automatic refinement tries: a 2.5 m arena is then a 500 x 500 bitmap.
+MIN_CELL = 0.005
+
+
 def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: str = "slippery",
-         t: float = 0.0, padding: float = KHEPERA.radius) -> Plan:
+         t: float = 0.0, padding: float = KHEPERA.radius, checkpoints: str = "visible", refine: bool = True) -> Plan:
     """Plan checkpoints from ``start`` to ``goal`` through ``world`` on the map known at time ``t`` (s).
 
     ``start``/``goal`` default to the world's (the goal where it is at ``t``); ``padding`` (m) defaults to
-    the robot radius (ch. 3.2.2: "the cushion width approximates the robot radius"). Raises
+    the robot radius (ch. 3.2.2: "the cushion width approximates the robot radius"); ``checkpoints`` is
+    the rule (:data:`RULES`). With ``refine``, a bitmap too coarse to hold a route — a doorway narrower
+    than two cells can lose every free cell — is refined: the cell is halved until a route exists or
+    :data:`MIN_CELL` is passed, and the plan says which cell it used (``Plan.cell``). Raises
     :class:`InputError` when start or goal lie outside the padded free space or the cell size is bad, and
-    :class:`NoRouteError` when no route exists.
+    :class:`NoRouteError` when no route exists at any cell tried.
     """
     start = _point(world.start[:2] if start is None else start, "start")
     goal = _point(world.goal_at(t) if goal is None else goal, "goal")
-    key = (world, start, goal, cell, method, t, padding)
+    key = (world, start, goal, cell, method, t, padding, checkpoints, refine)
     try:
         hash(key)
     except TypeError:  # an unhashable argument: plan without remembering (the pipeline reports what is wrong)
-        return _plan(*key, check=("start", "goal"))
+        return _refined(*key, check=("start", "goal"))
     return _remembered_plan(*key)
 
 
 @functools.lru_cache(maxsize=64)
-def _remembered_plan(world, start, goal, cell, method, t, padding) -> Plan:
+def _remembered_plan(world, start, goal, cell, method, t, padding, checkpoints, refine) -> Plan:
     """:func:`plan`, remembered: a plan is a pure function of its arguments, and ``ekm compare`` plans the same
-    world from the same start for every architecture and seed — 10–14 ms each time, a third of a short
-    Samba run's wall time (docs/speed.md). The plan's arrays are read-only, as it is shared."""
-    plan_ = _plan(world, start, goal, cell, method, t, padding, check=("start", "goal"))
+    world from the same start for every architecture and seed. The plan's arrays are read-only, as it is
+    shared."""
+    plan_ = _refined(world, start, goal, cell, method, t, padding, checkpoints, refine, check=("start", "goal"))
     for a in (*(getattr(plan_, f.name) for f in fields(plan_)), plan_.graph.edges):
         if isinstance(a, np.ndarray):
             a.flags.writeable = False
     return plan_
 
 
-def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius, reach: float = 0.0) -> Plan:
+def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius, reach: float = 0.0,
+           refine: bool = True) -> Plan:
     """Plan again from the robot's ``position`` (x, y) on the map known at ``t`` (s) (Fig. 6.5).
 
-    Keeps the method, cell size and goal of ``previous``; the slippery labelling restarts from the
-    robot's current cell, as it did from its initial cell (Fig. 3.3b). The robot is where it is: its
-    position is not required to clear the cushion (contact or sensor noise can leave it a little inside),
-    only to lie within one cell of a free bitmap cell — or, with ``reach`` > 0 (m), the route starts at
-    the nearest point within ``reach`` that does (a robot pressed against an obstacle just added to the
-    map stands inside its cushion).
+    Keeps the method, cell size, checkpoint rule and goal of ``previous``; the slippery labelling restarts
+    from the robot's current cell, as it did from its initial cell (Fig. 3.3b). The robot is where it is:
+    its position is not required to clear the cushion (contact or sensor noise can leave it a little
+    inside), only to lie within one cell of a free bitmap cell — or, with ``reach`` > 0 (m), the route
+    starts at the nearest point within ``reach`` that does (a robot pressed against an obstacle just added
+    to the map stands inside its cushion). ``refine`` as in :func:`plan`.
     """
-    return _plan(world, position, previous.goal, previous.cell, previous.method, t, padding, check=("goal",),
-                 reach=reach)
+    return _refined(world, position, previous.goal, previous.cell, previous.method, t, padding, previous.rule,
+                    refine, check=("goal",), reach=reach)
+
+
+def _refined(world, start, goal, cell, method, t, padding, checkpoints, refine, check, reach: float = 0.0) -> Plan:
+    """:func:`_plan` at ``cell``, and with ``refine`` at half the cell, a quarter … down to :data:`MIN_CELL`
+    while no route exists; the error of the finest cell tried if none does."""
+    while True:
+        try:
+            return _plan(world, start, goal, cell, method, t, padding, check, checkpoints, reach)
+        except NoRouteError as exc:
+            finer = cell / 2
+            if not refine or finer < MIN_CELL - 1e-12:
+                raise NoRouteError(f"{world.name}: {exc}" + (f" (tried cells down to {cell:g} m)" if refine else "")) \
+                    from None
+            cell = finer
 
 
 def _nearest_startable(W, point, cell: float, reach: float):
@@ -177,11 +208,14 @@ def _nearest_startable(W, point, cell: float, reach: float):
     return None
 
 
-def _plan(world, start, goal, cell, method, t, padding, check, reach: float = 0.0) -> Plan:
-    """:func:`plan` with the free-space test applied to the points named in ``check``, and the start moved
-    to the nearest startable point within ``reach`` (see :func:`replan`)."""
+def _plan(world, start, goal, cell, method, t, padding, check, checkpoints: str = "thesis",
+          reach: float = 0.0) -> Plan:
+    """:func:`plan` at one cell size with the free-space test applied to the points named in ``check``, and
+    the start moved to the nearest startable point within ``reach`` (see :func:`replan`)."""
     if method not in METHODS:
         raise InputError(f"method: must be one of {', '.join(METHODS)}, got {method!r}")
+    if checkpoints not in RULES:
+        raise InputError(f"checkpoints: must be one of {', '.join(RULES)}, got {checkpoints!r}")
     points = {"start": _point(start, "start"), "goal": _point(goal, "goal")}
     obstacles = padded_obstacles(world, t, padding)
     for name in check:
@@ -191,7 +225,12 @@ def _plan(world, start, goal, cell, method, t, padding, check, reach: float = 0.
     W = rasterise(obstacles, world.size, cell)
     if reach > 0:
         points["start"] = _nearest_startable(W, points["start"], cell, reach) or points["start"]
-    return plan_bitmap(W, cell, points["start"], points["goal"], method)
+    result = plan_bitmap(W, cell, points["start"], points["goal"], method)
+    if checkpoints == "visible":
+        seen = visible_checkpoints(W, result.labels, result.route, cell, result.start, result.goal, obstacles)
+        if seen is not None:
+            result = replace(result, checkpoints=seen, rule="visible")
+    return result
 
 
 def map_changed(world, since: float, now: float) -> bool:

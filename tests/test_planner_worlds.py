@@ -29,9 +29,9 @@ def passes_doorway(p, x_wall, lo, hi):
 
 @pytest.mark.parametrize("name", named_worlds())
 @pytest.mark.parametrize("method", METHODS)
-def test_checkpoints_lie_in_free_space_on_shared_boundaries(name, method):
+def test_thesis_checkpoints_lie_in_free_space_on_shared_boundaries(name, method):
     world = load_world(name)
-    p = plan(world, method=method)
+    p = plan(world, method=method, checkpoints="thesis")
     assert_checkpoints_on_shared_boundaries(p)
     assert world.clearance(p.checkpoints, 0.0, known_only=True).min() >= 0.025 - 1e-9
     # The legs between checkpoints: those of convex cells (quadtree, grid) keep the whole cushion; a slippery
@@ -50,8 +50,22 @@ def test_three_rooms_route_passes_both_doorways(method):
     assert passes_doorway(p, 0.8, 0.10, 0.22)
 
 
+@pytest.mark.parametrize("name", named_worlds())
+@pytest.mark.parametrize("method", METHODS)
+def test_visible_checkpoints_are_joined_by_legs_that_keep_the_cushion(name, method):
+    """Every leg start → checkpoint → … → goal keeps the robot radius from every known wall and obstacle
+    (the rule's promise, measured here with the world's own clearance, not the planner's slack)."""
+    world = load_world(name)
+    p = plan(world, method=method)
+    assert p.rule == "visible"
+    pts = np.vstack([np.asarray(p.start)[None], p.checkpoints])
+    legs = np.concatenate([a + np.linspace(0.0, 1.0, 400)[:, None] * (b - a) for a, b in zip(pts[:-1], pts[1:])])
+    assert world.clearance(legs, 0.0, known_only=True).min() >= 0.025 - 0.003 - 1e-9
+    np.testing.assert_array_equal(p.checkpoints[-1], world.goal_at(0.0))
+
+
 def test_slippery_plan_of_three_rooms():
-    p = plan(load_world("three-rooms"))
+    p = plan(load_world("three-rooms"), checkpoints="thesis")
     assert p.method == "slippery" and p.cells == 5 and len(p.route) == 3
     assert np.allclose(p.checkpoints, [[0.44, 0.28], [0.84, 0.18], [1.1, 0.42]])
 
@@ -59,7 +73,7 @@ def test_slippery_plan_of_three_rooms():
 def test_three_rooms_changed_uses_the_lower_doorway_then_replans_through_the_upper():
     world = load_world("three-rooms-changed")
     lower, upper = (0.10, 0.22), (0.40, 0.52)
-    before = plan(world)
+    before = plan(world, checkpoints="thesis")
     assert passes_doorway(before, 0.8, *lower)
 
     assert not map_changed(world, 0.0, 5.9) and map_changed(world, 5.9, 6.0)
@@ -139,7 +153,8 @@ def test_a_plan_is_remembered_shared_read_only_and_equal_to_a_fresh_one():
     world = load_world("three-rooms")
     first, again = plan(world), plan(world, start=np.array(world.start[:2]))
     assert again is first  # the same start given as an array finds the remembered plan
-    fresh = _plan(world, world.start[:2], world.goal, first.cell, first.method, 0.0, KHEPERA.radius, check=("start", "goal"))
+    fresh = _plan(world, world.start[:2], world.goal, first.cell, first.method, 0.0, KHEPERA.radius, check=("start", "goal"),
+                  checkpoints="visible")
     np.testing.assert_array_equal(first.checkpoints, fresh.checkpoints)
     np.testing.assert_array_equal(first.labels, fresh.labels)
     for a in (first.bitmap, first.labels, first.checkpoints):

@@ -10,6 +10,7 @@ from ekm.api.result import Result, new_axes
 
 _PROG = "ekm plan"
 METHODS = ("slippery", "quadtree", "grid")
+RULES = ("visible", "thesis")  # planner.RULES, without importing the planner
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,7 @@ class Plan(Result):
         p = self.plan
         return {"method": p.method, "cells": p.cells, "graph_edges": len(p.graph.edges), "path_cells": list(p.route),
                 "checkpoints": p.checkpoints.round(6).tolist(), "seconds": round(self.seconds, 6),
+                "rule": p.rule, "length_m": round(p.length, 4),
                 "world": self.world.name, "cell": p.cell, "at": self.at, **provenance(jax=False)}
 
     @property
@@ -61,7 +63,7 @@ class Plan(Result):
 
 
 def plan(world, start=None, goal=None, *, cell: float | None = None, method: str = "slippery",
-         at: float = 0.0) -> Plan:
+         at: float = 0.0, checkpoints: str = "visible") -> Plan:
     """Plan checkpoints from ``start`` to ``goal`` through ``world`` with slippery cells (thesis ch. 3) or
     a baseline decomposition.
 
@@ -72,11 +74,15 @@ def plan(world, start=None, goal=None, *, cell: float | None = None, method: str
     start, goal : (x, y) in metres, optional
         Default: the world's start and goal.
     cell : float, optional
-        Bitmap cell size in metres (default 0.02).
+        Bitmap cell size in metres (default 0.02); halved automatically while no route fits (a doorway
+        narrower than two cells can lose every free cell). ``Plan.plan.cell`` is the cell used.
     method : {"slippery", "quadtree", "grid"}, default "slippery"
         The cell decomposition.
     at : float, default 0
         Plan on the map known at this time (s): after the known events until then.
+    checkpoints : {"visible", "thesis"}, default "visible"
+        ``visible``: consecutive checkpoints see each other with the robot's clearance (a labelled
+        extension, :mod:`planner.visibility`); ``thesis``: the greedy rule of ch. 3.2.3 as written.
 
     Returns :class:`Plan`, whose ``to_dict()`` is ``ekm plan --json`` for the same arguments (``seconds``,
     the planning time, differs from run to run).
@@ -93,9 +99,10 @@ def plan(world, start=None, goal=None, *, cell: float | None = None, method: str
     from planner import plan as make_plan
 
     choice(method, METHODS, "--method", _PROG)
+    choice(checkpoints, RULES, "--checkpoints", _PROG)
     at = number(at, "--at", _PROG, strict=False)
     cell = DEFAULT_CELL if cell is None else number(cell, "--cell", _PROG, strict=True)
     w = load(world)
     t0 = time.perf_counter()
-    p = make_plan(w, start, goal, cell=cell, method=method, t=at)
+    p = make_plan(w, start, goal, cell=cell, method=method, t=at, checkpoints=checkpoints)
     return Plan(plan=p, world=w, at=at, seconds=time.perf_counter() - t0)

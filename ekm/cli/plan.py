@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from ekm.api.planning import METHODS
+from ekm.api.planning import METHODS, RULES
 from ekm.cli.args import nonneg_float, one_of, positive_float, print_json, xy_point
 
 
@@ -12,7 +12,11 @@ def add_parser(sub) -> None:
     p.add_argument("--world", required=True, metavar="W", help="named world or world file")
     p.add_argument("--start", type=xy_point, metavar="X,Y", help="start in metres (default: the world's)")
     p.add_argument("--goal", type=xy_point, metavar="X,Y", help="goal in metres (default: the world's)")
-    p.add_argument("--cell", type=positive_float, metavar="M", help="bitmap cell size in metres (default 0.02)")
+    p.add_argument("--cell", type=positive_float, metavar="M",
+                   help="bitmap cell size in metres (default 0.02; halved automatically while no route fits)")
+    p.add_argument("--checkpoints", type=one_of(RULES), default="visible", metavar="{" + ",".join(RULES) + "}",
+                   help="checkpoint rule: visible (consecutive checkpoints see each other with the robot's "
+                        "clearance; default) or thesis (the greedy rule of ch. 3.2.3)")
     p.add_argument("--method", type=one_of(METHODS), default="slippery", metavar="{" + ",".join(METHODS) + "}",
                    help="cell decomposition (default slippery)")
     p.add_argument("--at", type=nonneg_float, default=0.0, metavar="SECONDS",
@@ -27,7 +31,8 @@ def run(args) -> None:
     :func:`ekm.plan`)."""
     from ekm.api.planning import plan
 
-    result = plan(args.world, args.start, args.goal, cell=args.cell, method=args.method, at=args.at)
+    result = plan(args.world, args.start, args.goal, cell=args.cell, method=args.method, at=args.at,
+                  checkpoints=args.checkpoints)
     p, world, seconds = result.plan, result.world, result.seconds
     route = " -> ".join(map(str, p.route[:12])) + (f" -> ... ({len(p.route)} cells)" if len(p.route) > 12 else "")
     if args.plot:
@@ -47,6 +52,6 @@ def run(args) -> None:
     if k > 10:
         print(f"  ... {k - 10} more checkpoints (--json lists them all)")
     print(f"  goal ({p.goal[0]:.3f}, {p.goal[1]:.3f})")
-    print(f"  checkpoint path {p.length:.3f} m, planned in {seconds:.3f} s")
+    print(f"  checkpoint path {p.length:.3f} m ({p.rule} checkpoints), planned in {seconds:.3f} s")
     if args.plot:
         print(f"  plot written to {args.plot}")

@@ -1,0 +1,204 @@
+"""Checkpoints that see each other: the default checkpoint rule, a labelled extension of thesis ch. 3.2.3.
+
+The thesis's greedy rule (:mod:`planner.checkpoints`) puts one checkpoint on each boundary the route
+crosses. A slippery cell need not be convex — a staircase of steps passes its row/column test — so the
+straight leg between two greedy checkpoints can run through walls, and a reactive layer pulled towards
+a checkpoint behind several walls has nothing to follow. Here the checkpoints are the corners of a path
+through the *same route of cells* on which **every leg is a straight segment that keeps the robot's
+clearance**:
+
+1. every free bitmap cell of the route gets its *slack* — how far its centre is from the nearest padded
+   obstacle beyond the cushion (:func:`slack`; the cushion is the robot radius, ch. 3.2.2, so slack is
+   the gap the body keeps);
+2. a shortest path over the route's free bitmap cells (8-connected, no corner cutting) whose step cost
+   grows where the slack is below ``margin``, ``length · (1 + weight · (margin − slack) / margin)``:
+   it keeps ``margin`` from walls where there is room and takes the middle of a narrow doorway;
+3. that path pulled taut: from each checkpoint the next is the farthest path point that the straight
+   segment reaches while keeping ``min(margin, least slack of the path in between) − tolerance``
+   (:func:`segment_slack`), the goal last.
+
+So consecutive checkpoints see each other with ``margin`` to spare where the path had it, and with the
+path's own slack through a narrow passage. The route of cells is the thesis's (slippery cells and the
+search of :mod:`planner.search`); ``checkpoints="thesis"`` in :func:`planner.plan` keeps the greedy rule.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from planner.bitmap import FREE, Padded, free_cell_at
+from robots.geometry import bounds, distance
+
+#: Extra clearance (m) beyond the cushion that checkpoint legs keep where there is room: a little less
+#: than the 1.5 cm each side that an 8 cm doorway leaves the 5 cm robot.
+MARGIN = 0.03
+
+#: How much dearer a step with no slack is than one with ``margin`` (the path's pull to the middle).
+WEIGHT = 4.0
+
+#: Slack (m) a leg may lose against the path it replaces: the path's cells are sampled at their centres.
+TOLERANCE = 0.003
+
+#: Spacing (m) of the points at which a leg's slack is measured.
+STEP = 0.002
+
+
+def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
+    """Slack ``(...,)`` of ``points`` ``(..., 2)``: min over padded obstacles of distance − clearance (m);
+    negative inside a cushion."""
+    p = np.asarray(points, dtype=float)
+    out = np.full(p.shape[:-1], np.inf)
+    for shape, clearance in obstacles:
+        out = np.minimum(out, distance(p, shape) - clearance)
+    return out
+
+
+def segment_slack(a, b, obstacles: Sequence[Padded], step: float = STEP) -> float:
+    """Least slack (m) of the points of segment ``a``–``b``, sampled every ``step`` (the slack is 1-Lipschitz,
+    so the true least is within ``step / 2`` of this). Only obstacles whose grown box meets the segment's
+    box are measured."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    n = max(2, int(math.ceil(float(np.linalg.norm(b - a)) / step)) + 1)
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    near = [(s, c) for s, c in obstacles if _box_near(bounds(s), lo, hi, c + 0.05)]
+    if not near:
+        return math.inf
+    pts = a + np.linspace(0.0, 1.0, n)[:, None] * (b - a)
+    return float(slack(pts, near).min())
+
+
+def _box_near(box, lo, hi, grow: float) -> bool:
+    x0, y0, x1, y1 = box
+    return x0 - grow <= hi[0] and lo[0] <= x1 + grow and y0 - grow <= hi[1] and lo[1] <= y1 + grow
+
+
+def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: float, start, goal,
+               obstacles: Sequence[Padded], margin: float = MARGIN, weight: float = WEIGHT):
+    """The path of step 2 (module docstring): points ``(n, 2)`` from ``start`` through the centres of free
+    bitmap cells of the ``route``'s cells to ``goal``, and the slack ``(n,)`` of each point; None if the
+    route's cells do not join start and goal (which a plan's route always does)."""
+    inside = (W == FREE) & np.isin(labels, np.asarray(route))
+    first, last = free_cell_at(W, start, cell), free_cell_at(W, goal, cell)
+    if first is None or last is None or not inside[first] or not inside[last]:
+        return None
+    ny, nx = W.shape
+    iy, ix = np.nonzero(inside)
+    centres = (np.stack([ix, iy], axis=-1) + 0.5) * cell
+    s = np.full(W.shape, -np.inf)
+    s[iy, ix] = slack(centres, obstacles)
+    penalty = 1.0 + weight * np.clip((margin - s) / margin, 0.0, None)  # (ny, nx), inf outside
+    parent = _dijkstra(inside, penalty, first, last)
+    if parent is None:
+        return None
+    cells = [last]
+    while cells[-1] != first:
+        cells.append(parent[cells[-1]])
+    cells.reverse()
+    pts = np.array([((x + 0.5) * cell, (y + 0.5) * cell) for y, x in cells])
+    pts = np.vstack([np.asarray(start, float)[None, :2], pts, np.asarray(goal, float)[None, :2]])
+    ends = slack(pts[[0, -1]], obstacles)
+    return pts, np.concatenate([[ends[0]], s[tuple(np.array(cells).T)], [ends[1]]])
+
+
+_MOVES = ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1))
+
+
+def _dijkstra(inside: np.ndarray, penalty: np.ndarray, first, last) -> dict | None:
+    """Parents of the cheapest 8-connected path over ``inside`` cells from ``first`` to ``last`` (``(iy, ix)``),
+    a step costing its length times the mean ``penalty`` of its two cells; a diagonal step needs both
+    cells it passes between inside (no corner cutting)."""
+    ny, nx = inside.shape
+    cost = {first: 0.0}
+    parent = {first: first}
+    heap = [(0.0, first)]
+    done = set()
+    while heap:
+        c, here = heapq.heappop(heap)
+        if here in done:
+            continue
+        if here == last:
+            return parent
+        done.add(here)
+        y, x = here
+        for dy, dx in _MOVES:
+            v, u = y + dy, x + dx
+            if not (0 <= v < ny and 0 <= u < nx and inside[v, u]):
+                continue
+            if dy and dx and not (inside[y, u] and inside[v, x]):
+                continue
+            nc = c + (1.4142135623730951 if dy and dx else 1.0) * 0.5 * (penalty[y, x] + penalty[v, u])
+            if nc < cost.get((v, u), math.inf):
+                cost[(v, u)] = nc
+                parent[(v, u)] = here
+                heapq.heappush(heap, (nc, (v, u)))
+    return None
+
+
+def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], margin: float = MARGIN,
+         tolerance: float = TOLERANCE) -> np.ndarray:
+    """Step 3 (module docstring): the corners ``(k, 2)`` of ``points`` ``(n, 2)`` pulled taut, the last point last.
+
+    A leg from point i to point j is *clear* when the straight segment keeps ``min(margin, min(slacks[i..j]))
+    − tolerance``. First, from each corner the next is the last point before the first that no clear leg
+    reaches; then each corner slides along the path between its neighbours to the point that makes the two
+    legs shortest while both stay clear (so corners sit where the path turns round an obstacle, not
+    wherever the first pass stopped), and a corner whose neighbours see each other is dropped; repeated
+    until nothing changes.
+    """
+    n = len(points)
+    floor = np.minimum(slacks, margin)
+
+
+    def clear(i: int, j: int) -> bool:
+        need = float(floor[min(i, j):max(i, j) + 1].min()) - tolerance
+        return segment_slack(points[i], points[j], obstacles) >= need
+
+    corners = [0]
+    i = 0
+    while i < n - 1:
+        j = i + 1
+        while j + 1 < n and clear(i, j + 1):
+            j += 1
+        corners.append(j)
+        i = j
+
+    for _ in range(8):
+        changed = False
+        k = 1
+        while k < len(corners) - 1:
+            a, c = corners[k - 1], corners[k + 1]
+            if clear(a, c):
+                del corners[k]
+                changed = True
+                continue
+            length = lambda b: float(np.linalg.norm(points[b] - points[a]) + np.linalg.norm(points[c] - points[b]))
+            best = corners[k]
+            for b in sorted(range(a + 1, c), key=length):
+                if length(b) >= length(best) - 1e-12:
+                    break
+                if clear(a, b) and clear(b, c):
+                    best = b
+                    break
+            if best != corners[k]:
+                corners[k], changed = best, True
+            k += 1
+        if not changed:
+            break
+    return np.array(points[corners[1:]], dtype=float).reshape(-1, 2)
+
+
+def visible_checkpoints(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: float, start, goal,
+                        obstacles: Sequence[Padded], margin: float = MARGIN) -> np.ndarray | None:
+    """Checkpoints ``(k, 2)`` that see each other (module docstring), the goal last; None if the route's cells
+    do not join ``start`` and ``goal``."""
+    found = route_path(W, labels, route, cell, start, goal, obstacles, margin)
+    if found is None:
+        return None
+    pts, s = found
+    corners = taut(pts, s, obstacles, margin)
+    corners[-1] = np.asarray(goal, dtype=float)[:2]
+    return corners
