@@ -18,15 +18,21 @@ robot's motor and sensor noise), the slippery-cell planner (:mod:`planner`) and 
    targets"), and then the executive halts the motors; a robot passing through the goal does not
    stay within 5 mm for a second. A moving goal (Samba's scenario) is reached when it comes under
    the robot's body (centre within the body radius);
-5. the trap monitor reports ``trapped`` when the robot has come no closer to its checkpoint for a set
-   time (thesis 7.1.1, cognizant failure); with ``recover``, the obstacle points the robot has sensed
-   so far that the map does not explain join the planner's map, and the route is replanned around
-   them from where the robot is.
+5. the trap monitor (:mod:`evaluation.monitor`) reports ``trapped`` when the robot has come no closer to
+   its checkpoint and reached no new ground for a set time (thesis 7.1.1, cognizant failure); with
+   ``recover`` (the default), the obstacle points the robot has sensed so far that the map does not
+   explain join the planner's map (:func:`with_sensed`), the route is replanned around them from where
+   the robot is, and the robot turns on the spot to face the new route before its architecture takes
+   over again (a trap is a balance between going on and backing off; a disc turning on the spot
+   touches nothing new, and facing the new route breaks the balance).
+
+The plan is :func:`planner.plan`'s with the config's checkpoint rule (``visible`` by default, ``thesis``
+for ch. 3.2.3 as written) and its cell, refined automatically where a narrow place holds no free cell.
 
 A run **reaches** the goal when the robot stops there without a single collision on the way: every
-contact of its body with anything (wall, obstacle, mover) is counted and never hidden. A run is a
-pure function of (world, controller, seed): the world's noise streams are seeded, the controller is
-pure, and nothing else is random.
+contact episode of its body with anything (wall, obstacle, mover) is counted and never hidden, and the
+time spent in contact is reported. A run is a pure function of (world, controller, seed): the world's
+noise streams are seeded, the controller is pure, and nothing else is random.
 """
 
 from __future__ import annotations
@@ -39,7 +45,8 @@ import numpy as np
 
 from ekm.errors import InputError
 from evaluation.monitor import TrapMonitor
-from planner import DEFAULT_CELL, NoRouteError, map_changed, plan, replan
+from planner import DEFAULT_CELL, RULES, map_changed, plan, replan, visibility
+from planner.bitmap import padded_obstacles
 from robots.controllers.base import Controller, Observation, hit_points
 from robots.geometry import Circle, bounds
 from robots.kinematics import egocentric, is_stop_command
@@ -55,17 +62,26 @@ class ScenarioConfig:
     settle_s: float = 1.024  # s within the goal's tolerance after which the robot counts as stopped there
     capture_radius: float | None = None  # m: a moving goal is caught within this; None = the body radius
     time_limit: float = 120.0  # s of simulated time
-    trap_after: float = 20.0  # s without progress towards the checkpoint before the monitor says trapped
-    trap_progress: float = 0.01  # m: coming this much closer than ever before counts as progress
-    recover: bool = False  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
+    trap_after: float = 20.0  # s without progress (closer, or new ground) before the monitor says trapped
+    trap_progress: float = 0.01  # m: coming this much closer to the checkpoint than ever before is progress
+    trap_ground: float = 0.05  # m: side of the squares of ground; entering one never visited is progress
+    recover: bool = True  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
     max_recoveries: int = 5  # traps recovered from before a run gives up
     sensed_radius: float = 0.005  # m: an obstacle point added to the map on recovery: a disc of the IR's τ
-    cell: float = DEFAULT_CELL  # m: the planner's bitmap cell
+    cell: float = DEFAULT_CELL  # m: the planner's bitmap cell (halved while no route exists, if ``refine``)
+    refine: bool = True  # refine the cell where the map's narrow places hold no route at ``cell``
+    checkpoints: str = "visible"  # the planner's checkpoint rule: visible (default) or thesis (ch. 3.2.3)
     start_reach: float = 0.06  # m: a replan may start this far from the robot (pressed into a new cushion)
+    pass_radius: float = 0.1  # m: visible checkpoints: within this of one whose successor it sees, the robot
+    #                           moves on to the successor
+    turn_s: float = 3.0  # s: after a recovery the robot turns on the spot to face the new route for at most this
+    turn_tolerance: float = 0.2  # rad: ... until the first checkpoint is within this of straight ahead
 
     def __post_init__(self):
-        for name in ("checkpoint_tolerance", "settle_s", "time_limit", "trap_after", "trap_progress", "sensed_radius", "cell",
-                     "start_reach"):
+        if self.checkpoints not in RULES:
+            raise InputError(f"scenario: checkpoints must be one of {', '.join(RULES)}, got {self.checkpoints!r}")
+        for name in ("checkpoint_tolerance", "settle_s", "time_limit", "trap_after", "trap_progress", "trap_ground",
+                     "sensed_radius", "cell", "start_reach", "pass_radius", "turn_s", "turn_tolerance"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise InputError(f"scenario: {name} must be a positive number, got {value!r}")
@@ -100,6 +116,7 @@ class RunRecord:
     time_s: float = 0.0
     path_m: float = 0.0
     collisions: int = 0
+    contact_s: float = 0.0
     checkpoints_reached: int = 0
     replans: int = 0
     recoveries: int = 0
@@ -112,18 +129,21 @@ class RunRecord:
     commands: list = field(default_factory=list)  # (t, v_l, v_r) sent each tick
     plans: list = field(default_factory=list)  # PlanChange
     checkpoint_log: list = field(default_factory=list)  # (t, x, y) of each checkpoint reached
-    collision_log: list = field(default_factory=list)  # (t, x, y) of the robot at each new contact
+    collision_log: list = field(default_factory=list)  # (t, x, y) of the robot at each new contact episode
     trap_log: list = field(default_factory=list)  # (t, x, y) where the monitor fired
     hits: list = field(default_factory=list)  # (t, (n, 2) world points the IR saw)
     goal_path: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))  # (ticks, 2) goal at each tick
 
     def outcome(self) -> dict:
-        """The ``ekm run --json`` record: DESIGN §6's keys, then ``arrived`` (stopped at the goal, collisions or
-        not), ``recoveries``, ``ended`` (why the run stopped), ``seed``, ``map`` and ``trial`` (which map drove)."""
+        """The ``ekm run --json`` record: ``world, architecture, reached, time_s, path_m, collisions`` (contact
+        episodes), ``checkpoints_reached, replans, trapped, final_distance_m``, then ``contact_s`` (time in
+        contact), ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
+        stopped), ``seed``, ``map`` and ``trial`` (which map drove)."""
         return {"world": self.world.name, "architecture": self.architecture, "reached": self.reached,
                 "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
                 "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,
-                "final_distance_m": round(self.final_distance_m, 5), "arrived": self.arrived,
+                "final_distance_m": round(self.final_distance_m, 5), "contact_s": round(self.contact_s, 3),
+                "arrived": self.arrived,
                 "recoveries": self.recoveries, "ended": self.ended, "seed": self.seed,
                 "map": self.map_source or None, "trial": self.trial}
 
@@ -148,16 +168,17 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     capture = robot.radius if config.capture_radius is None else config.capture_radius
     rec = RunRecord(world=world, architecture=controller.spec, seed=seed, period=period)
     known = world  # the planner's map: the world's known shapes (+ what recovery adds)
-    current = plan(world, t=0.0, cell=config.cell)
+    current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
+    sight = padded_obstacles(world, 0.0, robot.radius)  # the planner's map, for the look past a checkpoint
     index, target_id = 0, 0
-    monitor = TrapMonitor(config.trap_after, config.trap_progress)
+    monitor = TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground)
     radii = np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32)
     state = controller.init()
     step = _in_one_loop(controller.step)
     poses, times = [sim.pose], [0.0]
     sensed = []  # (t, pose, readings) of every tick whose IR saw something: RunRecord.hits, made when needed
-    last_t, collisions, settled_since = 0.0, 0, None
+    last_t, collisions, settled_since, turn_until = 0.0, 0, None, 0.0
     ticks = int(math.ceil(config.time_limit / period - 1e-9))
 
     def target_xy(t: float) -> np.ndarray:
@@ -165,11 +186,12 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
         return np.asarray(world.goal_at(t) if final else current.checkpoints[index], dtype=float)
 
     def replan_from(t: float, reason: str, added=np.zeros((0, 2))) -> bool:
-        nonlocal current, index, target_id
+        nonlocal current, index, target_id, sight
         try:
-            current = replan(current, known, sim.pose[:2], t, reach=config.start_reach)
+            current = replan(current, known, sim.pose[:2], t, reach=config.start_reach, refine=config.refine)
         except InputError:  # NoRouteError included: the change left no way through
             return False
+        sight = padded_obstacles(known, t, robot.radius)
         rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
         rec.replans += 1
         index, target_id = 0, target_id + 1
@@ -182,9 +204,11 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             rec.ended = "no route after a change of the map"
             break
         last_t = t
-        # Checkpoints already within reach (two that coincide at a corner, or a replan starting on one).
-        while index < len(current.checkpoints) - 1 and \
-                np.linalg.norm(sim.pose[:2] - current.checkpoints[index]) < config.checkpoint_tolerance:
+        # Checkpoints already within reach (two that coincide at a corner, or a replan starting on one), and
+        # with visible checkpoints one the robot is near whose successor it already sees (it cut the corner).
+        while index < len(current.checkpoints) - 1 and (
+                np.linalg.norm(sim.pose[:2] - current.checkpoints[index]) < config.checkpoint_tolerance
+                or (current.rule == "visible" and _sees_next(sim.pose[:2], current, index, config, sight))):
             rec.checkpoint_log.append((t, *current.checkpoints[index]))
             index, target_id = index + 1, target_id + 1
             monitor.reset(t)
@@ -202,8 +226,12 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             target_velocity=np.asarray(world.goal.velocity(t) if (final and world.moving_goal) else (0.0, 0.0),
                                        np.float32),
             markers=_markers(world, sim, t, radii))
-        state, command = step(state, obs)
-        command = np.asarray(command, dtype=float)
+        if t < turn_until and abs(float(obs.target[0])) > config.turn_tolerance:
+            command = _turn_on_the_spot(float(obs.target[0]), robot)  # recovery: face the new route first
+        else:
+            turn_until = 0.0
+            state, command = step(state, obs)
+            command = np.asarray(command, dtype=float)
         distance = float(np.linalg.norm(pose[:2] - goal))
         inside = final and not world.moving_goal and distance < config.checkpoint_tolerance
         settled_since = (settled_since if settled_since is not None else t) if inside else None
@@ -236,16 +264,18 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             index, target_id = index + 1, target_id + 1
             monitor.reset(sim.t)
             continue
-        if monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - target_xy(sim.t)))):
+        if monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - target_xy(sim.t))), sim.pose[:2]):
             rec.trap_log.append((sim.t, *sim.pose[:2]))
             if not config.recover or rec.recoveries >= config.max_recoveries:
                 rec.trapped, rec.ended = True, "trapped"
                 break
             rec.recoveries += 1
-            known, added = _with_sensed(known, _hits(sensed, controller), config.sensed_radius)
+            known, added = with_sensed(known, *sensed_points(sensed, controller), config.sensed_radius,
+                                       controller.sensors.noise, controller.sensors.resolution_m)
             if not replan_from(sim.t, "recovery", added):
                 rec.trapped, rec.ended = True, "trapped (no route around the sensed obstacle)"
                 break
+            turn_until = sim.t + config.turn_s
     else:
         rec.ended = "time limit"
 
@@ -253,11 +283,31 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     rec.hits = _hits(sensed, controller)
     rec.time_s = float(rec.checkpoint_log[-1][0] if rec.arrived else rec.times[-1])
     rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
-    rec.collisions = sim.collisions
+    rec.collisions, rec.contact_s = sim.collisions, sim.contact_s
     rec.checkpoints_reached = len(rec.checkpoint_log)
     rec.final_distance_m = float(np.linalg.norm(sim.pose[:2] - np.asarray(world.goal_at(sim.t))))
     rec.reached = rec.arrived and rec.collisions == 0
     return rec
+
+
+def _turn_on_the_spot(alpha: float, robot) -> np.ndarray:
+    """Wheel speeds ``(2,)`` that turn the robot on the spot towards a target ``alpha`` rad off its heading, at
+    half of c*: a disc turning on the spot sweeps nothing, so this can hit nothing the robot is not already
+    touching."""
+    v = 0.5 * robot.max_wheel_speed * (1.0 if alpha > 0 else -1.0)
+    return np.array([-v, v])
+
+
+def _sees_next(position, current, index: int, config: ScenarioConfig, sight) -> bool:
+    """Whether the robot at ``position``, within ``pass_radius`` of checkpoint ``index``, sees the next one: the
+    straight segment to it keeps half the planner's margin (or the slack the robot has, if less) on the
+    planner's map ``sight`` (:mod:`planner.visibility`). The checkpoint was a corner to get round; from here
+    there is nothing left to get round."""
+    here = current.checkpoints[index]
+    if np.linalg.norm(position - here) > config.pass_radius:
+        return False
+    need = min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
+    return visibility.segment_slack(position, current.checkpoints[index + 1], sight) >= need
 
 
 def _in_one_loop(step):
@@ -341,16 +391,37 @@ def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.
     return np.concatenate([pos, vel, radii[:, None]], axis=1).astype(np.float32)
 
 
-def _with_sensed(known: World, hits: list, radius: float) -> tuple[World, np.ndarray]:
-    """``known`` with every obstacle point sensed so far that the map does not already explain (further than
-    ``radius`` from its walls and obstacles) added as a small disc (thesis 7.1.1: recovery), and those
-    points ``(n, 2)``."""
-    if not hits:
+def sensed_points(sensed: list, controller: Controller) -> tuple[np.ndarray, np.ndarray]:
+    """Every obstacle point the IR saw in the ``sensed`` ticks (t, pose, readings), ``(n, 2)``, and the reading
+    ``(n,)`` (m from the body surface) each came from."""
+    if not sensed:
+        return np.zeros((0, 2)), np.zeros(0)
+    _, poses, readings = zip(*sensed)
+    readings = np.array(readings)
+    pts, seen = hit_points(np.array(poses), readings, controller.sensors.angles, controller.robot.radius)
+    return pts[seen], readings[seen]
+
+
+def with_sensed(known: World, points, readings, radius: float, noise: float = 0.1,
+                resolution: float = 0.005) -> tuple[World, np.ndarray]:
+    """``known`` with every sensed obstacle point that the map does not already explain added as a disc of
+    ``radius`` (thesis 7.1.1: recovery), and those points ``(n, 2)``.
+
+    A point is explained — it is a wall or obstacle of the map, seen with the IR's error — when it lies
+    within ``radius`` plus three standard deviations of its reading's noise (``3 · noise · reading``) plus
+    the resolution of the map's shapes. Only points nobody can mistake for the map join it: a doorway's
+    jambs, seen from afar with a few centimetres of noise, must not close the doorway. Points are merged
+    into one disc per ``radius``-sized square first.
+    """
+    points, readings = np.asarray(points, float).reshape(-1, 2), np.asarray(readings, float).reshape(-1)
+    if not len(points):
         return known, np.zeros((0, 2))
-    pts = np.unique(np.round(np.vstack([p for _, p in hits]) / radius) * radius, axis=0)  # one disc per cell
     w, h = known.size
-    pts = pts[(pts[:, 0] > 0) & (pts[:, 0] < w) & (pts[:, 1] > 0) & (pts[:, 1] < h)]
-    new = pts[known.clearance(pts, known_only=True) > radius] if len(pts) else pts
+    inside = (points[:, 0] > 0) & (points[:, 0] < w) & (points[:, 1] > 0) & (points[:, 1] < h)
+    points, readings = points[inside], readings[inside]
+    explained = radius + 3.0 * noise * readings + resolution
+    new = points[known.clearance(points, known_only=True) > explained] if len(points) else points
+    new = np.unique(np.round(new / radius) * radius, axis=0).reshape(-1, 2)  # one disc per cell
     discs = tuple(Circle((float(x), float(y)), radius) for x, y in new)
     return replace(known, obstacles=known.obstacles + discs), new
 

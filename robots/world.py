@@ -31,7 +31,8 @@ it through: there the wall wins, and the robot is set back onto the wall's surfa
 Moving obstacles are kinematic bodies: before each sub-step their velocity is set to the secant
 ``(path(t + dt) - position) / dt``, so they sit exactly on their path after every sub-step and their
 contacts see the true velocity. Events add their shapes (static) at the first sub-step with
-``t >= at_s``. A moving goal is ``world.goal_at(t)``.
+``t >= at_s`` at which the robot's body is clear of them (a door does not close on the robot). A moving
+goal is ``world.goal_at(t)``.
 
 Randomness: one seed → two independent streams (``numpy`` ``Generator.spawn``), one for actuator noise
 and one for sensor noise, so how often a controller reads its sensors does not change the motor noise
@@ -47,7 +48,7 @@ import pymunk
 from pymunk.autogeometry import convex_decomposition
 
 from robots import kinematics
-from robots.geometry import Box, Circle, Polygon, Segment, Shape, signed_area
+from robots.geometry import Box, Circle, Polygon, Segment, Shape, distance, signed_area
 from robots.kinematics import RobotState
 from robots.params import KHEPERA, RobotParams, SensorSet
 from robots.sensors import ir_readings, sensor_rays
@@ -60,6 +61,10 @@ _SENSOR_FILTER = pymunk.ShapeFilter(mask=pymunk.ShapeFilter.ALL_MASKS() ^ ROBOT_
 _ROBOT_COLLISION_TYPE = 1
 _ROBOT_MASS = 0.07  # kg, Khepera I (K-Team manual). Walls are static and movers kinematic, so it never matters.
 _SLOP = 1e-4  # m of overlap pymunk tolerates before it pushes shapes apart (its default, 0.1, is in pixels)
+
+#: s without contact after which a new contact is a new collision: shorter breaks are the same episode
+#: (a robot pressed against a jamb makes and breaks contact every few 16 ms sub-steps).
+REJOIN_S = 0.5
 
 
 def convex_pieces(vertices) -> list[np.ndarray]:
@@ -119,8 +124,12 @@ class PymunkWorld:
     wheels : ndarray ``(2,)``
         Current wheel speeds (m/s), the motor state carried between periods.
     collisions : int
-        Contact-begin events between the robot and anything (wall, obstacle, mover). Sliding along one
-        wall is one collision; bumping into the corner where two walls meet counts each wall.
+        Contact episodes between the robot and anything (wall, obstacle, mover): an episode begins when the
+        robot touches something after touching nothing for at least ``rejoin_s`` and lasts while it keeps
+        touching. Sliding along a wall, bumping into a corner where two walls meet, or jittering against a
+        door jamb (contact made and broken every few sub-steps) is one collision each.
+    contact_s : float
+        Time (s) the robot has spent touching something, summed over the sub-steps that end in contact.
     trace : ndarray ``(n, 3)``
         Poses after every sub-step of the last :meth:`step` (the start pose before the first step).
     """
@@ -159,6 +168,8 @@ class PymunkWorld:
         # Deepest overlap with a wall that the robot's own motion can cause: one sub-step at full speed.
         self._max_overlap = (1.0 + params.actuator_noise) * params.max_wheel_speed * params.dt
         self.collisions = 0
+        self.contact_s = 0.0
+        self._last_contact = -math.inf  # time of the last sub-step that ended in contact
         self._touching = 0  # contacts begun and not yet separated: without any, the robot has no arbiter
         self.space.on_collision(_ROBOT_COLLISION_TYPE, None, begin=self._begin_contact, separate=self._end_contact)
 
@@ -260,6 +271,9 @@ class PymunkWorld:
         if self._movers and self._touching:  # an overlap after the step is a contact the step has begun
             self._unsqueeze()
         self._k += 1
+        if self._touching:
+            self.contact_s += dt
+            self._last_contact = self._k * dt
 
     def _unsqueeze(self) -> None:
         """Move the robot out of any static shape it was pressed into deeper than its own motion can go.
@@ -301,14 +315,23 @@ class PymunkWorld:
         out.append((nx, ny, ox, oy))
 
     def _fire_events(self) -> None:
-        """Add the shapes of every event whose time has come (``at_s <= t``)."""
+        """Add the shapes of every event whose time has come (``at_s <= t``) — once the robot's body is clear of
+        them: a door that closes on the robot waits until the robot has left the doorway (a shape dropped onto
+        the robot would be a collision no controller could avoid)."""
         t = self.t + 1e-9  # t = k dt carries rounding; an event at 6.0 s fires at the sub-step that starts at 6.0 s
-        while self._pending and self._pending[0].at_s <= t:
-            for shape in self._pending.pop(0).add:
-                self.space.add(*pymunk_shapes(shape, self.space.static_body))
+        due = [e for e in self._pending if e.at_s <= t]
+        if not due:
+            return
+        centre = np.asarray(self._body.position)
+        for event in due:
+            if all(float(distance(centre, shape)) >= self.params.radius for shape in event.add):
+                for shape in event.add:
+                    self.space.add(*pymunk_shapes(shape, self.space.static_body))
+                self._pending.remove(event)
 
     def _begin_contact(self, arbiter, space, data) -> None:
-        self.collisions += 1
+        if not self._touching and self._k * self.params.dt - self._last_contact >= REJOIN_S - 1e-9:
+            self.collisions += 1  # a new episode (see ``collisions``)
         self._touching += 1
 
     def _end_contact(self, arbiter, space, data) -> None:

@@ -7,7 +7,7 @@ import pytest
 
 from ekm.errors import InputError
 from evaluation.monitor import TrapMonitor
-from evaluation.scenario import ScenarioConfig, _with_sensed, run_architecture, run_scenario
+from evaluation.scenario import ScenarioConfig, run_architecture, run_scenario, with_sensed
 from robots.controllers.base import Controller
 from robots.controllers.spec import parse_architecture
 from robots.kinematics import egocentric
@@ -70,7 +70,7 @@ def test_driving_into_a_wall_is_counted_as_collisions_and_never_reaches():
 
 def test_a_robot_that_makes_no_progress_is_reported_trapped_after_the_set_time():
     world = load_world("open-arena")
-    rec = run_scenario(world, constant([0.0, 0.0]), seed=0, config=ScenarioConfig(trap_after=5.0))
+    rec = run_scenario(world, constant([0.0, 0.0]), seed=0, config=ScenarioConfig(trap_after=5.0, recover=False))
     assert rec.trapped and rec.ended == "trapped" and not rec.reached
     assert 5.0 <= rec.time_s <= 5.0 + 2 * KHEPERA.avoid_period + 1e-9  # measured from the first tick's reading
     assert rec.trap_log and rec.trap_log[0][0] == pytest.approx(rec.time_s)
@@ -107,7 +107,7 @@ def test_an_unknown_event_changes_the_world_but_not_the_plan():
 
 def test_checkpoints_count_within_5_mm_on_the_sub_steps():
     world = load_world("three-rooms")
-    rec = run_scenario(world, steering(), seed=1)
+    rec = run_scenario(world, steering(), seed=1, config=ScenarioConfig(checkpoints="thesis"))
     cps = rec.plans[0].checkpoints
     assert rec.checkpoints_reached == len(cps)
     for (t, x, y), cp in zip(rec.checkpoint_log[:-1], cps[:-1]):  # the first passage, on the 16 ms sub-steps
@@ -139,7 +139,7 @@ def test_sensed_points_on_known_walls_are_not_added_again():
     world = load_world("three-rooms")
     on_wall = np.array([[0.4, 0.1], [0.4, 0.5]])
     new = np.array([[0.6, 0.3]])
-    grown, added = _with_sensed(world, [(0.0, on_wall), (1.0, new)], 0.01)
+    grown, added = with_sensed(world, np.vstack([on_wall, new]), [0.02, 0.02, 0.02], 0.01)
     assert len(grown.obstacles) == len(world.obstacles) + 1
     np.testing.assert_allclose(added, [[0.6, 0.3]])
     assert grown.obstacles[-1].center == pytest.approx((0.6, 0.3))

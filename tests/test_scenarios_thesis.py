@@ -1,7 +1,8 @@
 """Thesis ch. 6.2 as a scenario suite: who reaches the goal where, on seeds 0–9 (slow), and a quick version.
 
 A run succeeds when the robot stops at the goal without a single collision (``reached``). One set of
-parameters per architecture, the defaults, for every world.
+parameters per architecture, the defaults, for every world; the runs are set up as the thesis's were —
+its greedy checkpoints (ch. 3.2.3) and no recovery, so the trap monitor ends a trapped run.
 """
 
 import functools
@@ -9,16 +10,17 @@ import functools
 import numpy as np
 import pytest
 
-from evaluation.scenario import run_architecture
+from evaluation.scenario import ScenarioConfig, run_architecture
 from robots.controllers.spec import parse_architecture
 from robots.worldfile import load_world
 
 FUSION_LONG = "fusion:sensors=long,period=0.128"  # ch. 6.2.2: 12 long-range sensors, both modules at 0.128 s
+THESIS = ScenarioConfig(checkpoints="thesis", recover=False)
 
 
 @functools.lru_cache(maxsize=None)
 def outcome(world: str, architecture: str, seed: int) -> dict:
-    return run_architecture(load_world(world), parse_architecture(architecture), seed=seed).outcome()
+    return run_architecture(load_world(world), parse_architecture(architecture), seed=seed, config=THESIS).outcome()
 
 
 def runs(world, architecture, seeds):

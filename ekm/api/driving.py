@@ -13,12 +13,24 @@ _PROG = "ekm run"
 SENSORS = ("short", "long")
 
 
+def scenario_config(prog: str, *, time_limit, recover, checkpoints, cell):
+    """The :class:`evaluation.scenario.ScenarioConfig` of ``ekm run`` / ``ekm compare``'s options, each checked
+    with the command's own one-line errors."""
+    from evaluation.scenario import ScenarioConfig
+    from planner import DEFAULT_CELL, RULES
+
+    time_limit = number(time_limit, "--time-limit", prog, strict=True)
+    choice(checkpoints, RULES, "--checkpoints", prog)
+    cell = DEFAULT_CELL if cell is None else number(cell, "--cell", prog, strict=True)
+    return ScenarioConfig(time_limit=time_limit, recover=bool(recover), checkpoints=checkpoints, cell=cell)
+
+
 @dataclass(frozen=True)
 class Outcome(Result):
     """How one run went (DESIGN §6): ``reached`` the goal (within 5 mm and without a collision), after
-    ``time_s`` simulated seconds along ``path_m`` metres, with ``collisions`` new contacts,
+    ``time_s`` simulated seconds along ``path_m`` metres, with ``collisions`` contact episodes,
     ``checkpoints_reached``, ``replans``, ``trapped`` (the monitor saw no progress), ``final_distance_m``
-    to the goal; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
+    to the goal, ``contact_s`` the time spent in contact; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
     stopped), ``seed``, ``map`` and ``trial`` (which map drove; None for architectures without one),
     ``config`` (the :class:`evaluation.scenario.ScenarioConfig`). ``record`` holds the traces (poses every
     sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws the run
@@ -35,6 +47,7 @@ class Outcome(Result):
     replans: int
     trapped: bool
     final_distance_m: float
+    contact_s: float
     arrived: bool
     recoveries: int
     ended: str
@@ -76,7 +89,8 @@ class Outcome(Result):
 
 
 def run(world, architecture: str, *, maps=None, trial: int | None = None, sensors: str | None = None,
-        recover: bool = False, seed: int = 0, time_limit: float = 120.0, progress: bool = False) -> Outcome:
+        recover: bool = True, seed: int = 0, time_limit: float = 120.0, checkpoints: str = "visible",
+        cell: float | None = None, progress: bool = False) -> Outcome:
     """Drive the simulated robot from the world's start to its goal: the slippery-cell planner's
     checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; DESIGN §5).
 
@@ -95,12 +109,19 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         Which trial of ``maps`` drives (default: ``seed % trials``).
     sensors : {"short", "long"}, optional
         IR ring, overriding the architecture's (short: 8 Khepera sensors, 5 cm; long: 12, 17.5 cm).
-    recover : bool, default False
-        When trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1).
+    recover : bool, default True
+        When trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1); False ends
+        the run at the first trap, as the thesis's runs do.
     seed : int, default 0
         Noise seed of the run; the same seed gives the same run.
     time_limit : float, default 120
         Simulated seconds before the run is given up.
+    checkpoints : {"visible", "thesis"}, default "visible"
+        The planner's checkpoint rule: consecutive checkpoints see each other with the robot's clearance
+        (:mod:`planner.visibility`), or the greedy rule of thesis ch. 3.2.3 as written.
+    cell : float, optional
+        The planner's bitmap cell in metres (default 0.02), halved automatically where a narrow place
+        holds no route.
     progress : bool, default False
         Show a progress bar in simulated seconds on stderr.
 
@@ -113,13 +134,13 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
     """
     from ekm.api.mapset import Map, load
     from ekm.api.worlds import world as load_world
-    from evaluation.scenario import ScenarioConfig, run_architecture
+    from evaluation.scenario import run_architecture
     from robots.controllers.spec import parse_architecture
 
     if sensors is not None:
         choice(sensors, SENSORS, "--sensors", _PROG)
+    config = scenario_config(_PROG, time_limit=time_limit, recover=recover, checkpoints=checkpoints, cell=cell)
     seed = whole(seed, "--seed", _PROG, strict=False)
-    time_limit = number(time_limit, "--time-limit", _PROG, strict=True)
     if isinstance(maps, Map):
         if trial is not None and trial != maps.trial:
             raise InputError(f"--trial {trial}: the map given is trial {maps.trial}")
@@ -136,7 +157,6 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         maps = load(maps, chart=spec.default_chart)
         if trial is not None and trial >= maps.trials:
             raise InputError(f"--trial {trial}: the map file holds trials 0..{maps.trials - 1}")
-    config = ScenarioConfig(time_limit=time_limit, recover=bool(recover))
     bar, on_tick = None, None
     if progress:
         from tqdm import tqdm

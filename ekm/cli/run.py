@@ -9,19 +9,34 @@ ARCHITECTURE_HELP = ("ARCH[:k=v,...], e.g. fields, fields:form=thesis, fusion:be
                      "without parameters each runs its best documented variant")
 
 
+def add_scenario_options(p) -> None:
+    """The options of how a run goes, shared by ``ekm run`` and ``ekm compare``."""
+    import argparse
+
+    from ekm.api.planning import RULES
+
+    p.add_argument("--recover", action=argparse.BooleanOptionalAction, default=True,
+                   help="when trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1); "
+                        "--no-recover ends a run at its first trap (default: recover)")
+    p.add_argument("--checkpoints", type=one_of(RULES), default="visible", metavar="{" + ",".join(RULES) + "}",
+                   help="checkpoint rule: visible (consecutive checkpoints see each other with the robot's "
+                        "clearance; default) or thesis (the greedy rule of ch. 3.2.3)")
+    p.add_argument("--cell", type=positive_float, metavar="M",
+                   help="planner's bitmap cell in metres (default 0.02; halved automatically where no route fits)")
+    p.add_argument("--time-limit", type=positive_float, default=120.0, metavar="S",
+                   help="simulated seconds before a run is given up (default 120)")
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("run", help="drive the robot through a world: planner + architecture, one seed")
     p.add_argument("--world", required=True, metavar="W", help="named world or world file")
     p.add_argument("--architecture", required=True, metavar="ARCH", help=ARCHITECTURE_HELP)
     p.add_argument("--sensors", type=one_of(SENSORS), metavar="{" + ",".join(SENSORS) + "}",
                    help="IR ring, overriding the architecture's (short: 8 Khepera sensors, 5 cm; long: 12, 17.5 cm)")
-    p.add_argument("--recover", action="store_true",
-                   help="when trapped, add the sensed obstacle to the planner's map and replan (thesis 7.1.1)")
+    add_scenario_options(p)
     p.add_argument("--map", metavar="MAP.npz", help="indirect map from ekm train (default: the shipped map)")
     p.add_argument("--trial", type=nonneg_int, metavar="K", help="which trial of the map drives (default: seed %% trials)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="noise seed of the run (default 0)")
-    p.add_argument("--time-limit", type=positive_float, default=120.0, metavar="S",
-                   help="simulated seconds before the run is given up (default 120)")
     p.add_argument("--plot", metavar="PNG", help="draw the run to scale (Fig. 6.3-6.8)")
     p.add_argument("--gif", metavar="GIF", help="animate the run")
     p.add_argument("--maps-at", type=nonneg_float, metavar="T",
@@ -50,7 +65,8 @@ def run(args) -> None:
         if not plot:
             raise InputError("--maps-at: needs --plot PNG to draw the maps on")
     outcome = drive(args.world, args.architecture, maps=args.map, trial=args.trial, sensors=args.sensors,
-                    recover=args.recover, seed=args.seed, time_limit=args.time_limit, progress=show_progress(args))
+                    recover=args.recover, seed=args.seed, time_limit=args.time_limit, checkpoints=args.checkpoints,
+                    cell=args.cell, progress=show_progress(args))
     rec, spec = outcome.record, outcome.spec
     if plot and args.maps_at is not None:  # the same run again, recording the tick nearest T (a run is pure)
         from evaluation.actionmap_plot import record_tick, save_run_with_maps
