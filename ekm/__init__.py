@@ -17,6 +17,7 @@ function                               returns                     command line
 ``evaluate(maps, targets=, seed=)``    :class:`Metrics`            ``ekm evaluate``
 ``world(name_or_path)``                ``World``                   (world files)
 ``worlds(check=None)``                 :class:`Worlds`             ``ekm worlds``
+``generate(family, seed, ...)``        ``World``                   ``ekm worlds --generate``
 ``plan(world, start, goal, ...)``      :class:`Plan`               ``ekm plan``
 ``run(world, architecture, ...)``      :class:`Outcome`            ``ekm run``
 ``compare(worlds, architectures)``     :class:`Table`              ``ekm compare``
@@ -36,6 +37,7 @@ _EXPORTS = {
     "load": "ekm.api.mapset", "Maps": "ekm.api.mapset", "Map": "ekm.api.mapset",
     "evaluate": "ekm.api.evaluation", "Metrics": "ekm.api.evaluation", "Evaluation": "ekm.api.evaluation",
     "world": "ekm.api.worlds", "worlds": "ekm.api.worlds", "Worlds": "ekm.api.worlds",
+    "generate": "ekm.api.worlds",
     "plan": "ekm.api.planning", "Plan": "ekm.api.planning",
     "run": "ekm.api.driving", "Outcome": "ekm.api.driving",
     "compare": "ekm.api.comparing", "Table": "ekm.api.comparing",

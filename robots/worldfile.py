@@ -9,7 +9,8 @@ A world is a JSON object in metres and radians, origin bottom-left, x right, y u
      "moving": [{"shape": shape, "path": path}, ...],
      "events": [{"at_s": 30.0, "add": [shape, ...], "known": true}, ...],
      "start": [x, y, theta], "goal": [x, y] | {"path": path},
-     "wall_thickness": 0.01}
+     "wall_thickness": 0.01,
+     "difficulty": {...}}                           # optional: written by the generator
 
 Shapes: ``{"type": "box", "center": [x, y], "size": [w, h], "angle": a}``, ``{"type": "circle",
 "center": [x, y], "radius": r}``, ``{"type": "polygon", "points": [[x, y], ...]}``,
@@ -19,6 +20,12 @@ Shapes: ``{"type": "box", "center": [x, y], "size": [w, h], "angle": a}``, ``{"t
 it starts) and ``{"type": "line", "from": [x, y], "to": [x, y], "speed_mps": v, "bounce": true}`` (with
 ``bounce`` false the mover stops at ``to``). Events add shapes at ``at_s``; ``known`` (default true) says
 whether the planner is told and may replan.
+
+``difficulty`` describes a generated world (``robots.generator``; ``ekm worlds --generate``): ``family``
+(string), ``seed`` (int >= 0) and ``level`` (in [0, 1]) say how it was made; ``narrowest_passage_m``,
+``route_length_m``, ``straight_m`` (> 0), ``route_ratio`` (>= 1), ``turns``, ``traps`` and ``movers``
+(int >= 0) are its measures (``robots.generator.reach`` defines them). Nothing else reads them: they label
+the world for benchmarks and do not change it.
 
 Every problem raises :class:`ekm.errors.InputError` with one line naming the file and the key, e.g.
 ``lab.json: obstacles[1].radius: must be > 0, got -0.02``.
@@ -128,6 +135,37 @@ class Event:
 
 
 @dataclass(frozen=True)
+class Difficulty:
+    """How a generated world was made and how hard it is (the world file's ``difficulty``; lengths in m).
+
+    ``family``, ``seed`` and ``level`` (0 easy .. 1 hard) regenerate it; the rest are the measures of
+    :func:`robots.generator.reach.reach`: the narrowest gap the best route passes, the length of the
+    shortest route, the start-to-goal distance and their ratio, the route's turns, and the traps and
+    moving obstacles the generator placed.
+    """
+
+    family: str
+    seed: int
+    level: float
+    narrowest_passage_m: float
+    route_length_m: float
+    straight_m: float
+    route_ratio: float
+    turns: int
+    traps: int
+    movers: int
+
+    def to_dict(self) -> dict:
+        """The world file's ``difficulty`` object."""
+        return {f: getattr(self, f) for f in DIFFICULTY_KEYS}
+
+
+#: The keys of a world file's ``difficulty`` object, in the order they are written.
+DIFFICULTY_KEYS = ("family", "seed", "level", "narrowest_passage_m", "route_length_m", "straight_m", "route_ratio",
+                   "turns", "traps", "movers")
+
+
+@dataclass(frozen=True)
 class World:
     """A validated world (DESIGN §2). Build it with :func:`load_world` or :func:`parse_world`."""
 
@@ -142,6 +180,8 @@ class World:
     events: tuple[Event, ...] = ()
     wall_thickness: float = 0.01
     source: str = field(default="", compare=False)
+    #: Set for generated worlds; a label, so it takes no part in ``==`` and hashing (the planner caches on worlds).
+    difficulty: Difficulty | None = field(default=None, compare=False)
 
     @property
     def border(self) -> tuple[Segment, ...]:
@@ -188,9 +228,12 @@ class World:
 
     def counts(self) -> dict:
         """The ``ekm worlds --json`` summary of this world (DESIGN §6)."""
-        return {"name": self.name, "size": list(self.size), "walls": len(self.walls),
-                "obstacles": len(self.obstacles), "unforeseen": len(self.unforeseen),
-                "moving": len(self.moving), "moving_goal": self.moving_goal}
+        counts = {"name": self.name, "size": list(self.size), "walls": len(self.walls),
+                  "obstacles": len(self.obstacles), "unforeseen": len(self.unforeseen),
+                  "moving": len(self.moving), "moving_goal": self.moving_goal}
+        if self.difficulty is not None:
+            counts["family"] = self.difficulty.family
+        return counts
 
 
 # ---------------------------------------------------------------------------------------------- parsing
@@ -231,6 +274,14 @@ class _Checker:
         if not isinstance(value, list) or len(value) != n:
             self.fail(key, f"must be a list of {n} numbers, got {json.dumps(value)}")
         return tuple(self.number(v, f"{key}[{i}]", **kw) for i, v in enumerate(value))
+
+    def integer(self, value, key: str) -> int:
+        """A whole number >= 0 (JSON ``3``, not ``3.0``)."""
+        if isinstance(value, bool) or not isinstance(value, int):
+            self.fail(key, f"must be a whole number, got {json.dumps(value)}")
+        if value < 0:
+            self.fail(key, f"must be >= 0, got {value}")
+        return value
 
     def list(self, value, key: str) -> list:
         if not isinstance(value, list):
@@ -299,11 +350,26 @@ class _Checker:
                         self.number(v["speed_mps"], _join(key, "speed_mps"), positive=True),
                         self.boolean(v.get("bounce", True), _join(key, "bounce")))
 
+    def difficulty(self, value, key: str) -> Difficulty:
+        v = self.obj(value, key, DIFFICULTY_KEYS)
+        family = self.string(v["family"], _join(key, "family"))
+        seed = self.integer(v["seed"], _join(key, "seed"))
+        level = self.number(v["level"], _join(key, "level"))
+        if not 0.0 <= level <= 1.0:
+            self.fail(_join(key, "level"), f"must be in [0, 1], got {v['level']}")
+        lengths = [self.number(v[k], _join(key, k), positive=True)
+                   for k in ("narrowest_passage_m", "route_length_m", "straight_m")]
+        ratio = self.number(v["route_ratio"], _join(key, "route_ratio"))
+        if ratio < 1.0:
+            self.fail(_join(key, "route_ratio"), f"must be >= 1, got {v['route_ratio']}")
+        counts = [self.integer(v[k], _join(key, k)) for k in ("turns", "traps", "movers")]
+        return Difficulty(family, seed, level, *lengths, ratio, *counts)
+
 
 _SHAPE_KEYS = ("center", "size", "angle", "radius", "points", "from", "to")
 _PATH_KEYS = ("center", "radius", "period_s", "direction", "phase", "from", "to", "speed_mps", "bounce")
 _WORLD_REQUIRED = ("name", "size", "start", "goal")
-_WORLD_OPTIONAL = ("walls", "obstacles", "unforeseen", "moving", "events", "wall_thickness")
+_WORLD_OPTIONAL = ("walls", "obstacles", "unforeseen", "moving", "events", "wall_thickness", "difficulty")
 
 
 def _join(key: str, sub: str) -> str:
@@ -343,6 +409,7 @@ def parse_world(doc, source: str = "<world>") -> World:
         goal = ck.path(doc["goal"]["path"], "goal.path")
     else:
         goal = ck.vector(doc["goal"], "goal", 2)
+    difficulty = ck.difficulty(doc["difficulty"], "difficulty") if "difficulty" in doc else None
 
     # Everything must lie inside the arena.
     w, h = size
@@ -371,7 +438,7 @@ def parse_world(doc, source: str = "<world>") -> World:
 
     world = World(name=name, size=size, start=start, goal=goal, walls=tuple(walls), obstacles=tuple(obstacles),
                   unforeseen=tuple(unforeseen), moving=tuple(moving), events=tuple(events),
-                  wall_thickness=thickness, source=source)
+                  wall_thickness=thickness, source=source, difficulty=difficulty)
     # The robot must fit at its start; a fixed goal must not lie inside an obstacle or a wall.
     clear = float(world.clearance(np.asarray(start[:2]), 0.0))
     if clear < KHEPERA.radius:
@@ -389,16 +456,29 @@ def named_worlds() -> list[str]:
 
 
 def load_world(name_or_path: str | Path) -> World:
-    """Load a named world (``ekm worlds`` lists them) or a world file, validating every key."""
+    """Load a named world (``ekm worlds`` lists them), a world file, or a generated world spelt
+    ``FAMILY:SEED`` or ``FAMILY:SEED:D`` (``maze:7``, ``maze:7:0.6``; :mod:`robots.generator`), validating
+    every key.
+
+    A generated world's name is its spelling, so ``load_world(world.name)`` makes it again, bit for bit:
+    a worker process gets a generated world from its name alone.
+    """
     text_source = str(name_or_path)
     path = Path(name_or_path)
     if path.suffix != ".json" and not path.exists() and text_source in named_worlds():
         text = resources.files("robots.worlds").joinpath(f"{text_source}.json").read_text()
         source = text_source
     else:
+        if not path.exists() and path.suffix != ".json":
+            from robots.generator import generate, parse_spelling
+
+            spelt = parse_spelling(text_source)
+            if spelt is not None:
+                return generate(*spelt)
         if not path.is_file():
             names = ", ".join(named_worlds())
-            raise InputError(f"{text_source}: no such world file or named world (named worlds: {names})")
+            raise InputError(f"{text_source}: no such world file or named world (named worlds: {names}; "
+                             f"or a generated world, FAMILY:SEED[:DIFFICULTY])")
         try:
             text = path.read_text()
         except (OSError, UnicodeDecodeError) as exc:
@@ -425,3 +505,73 @@ def _unique_keys(pairs) -> dict:
             raise _DuplicateKey(key)
         doc[key] = value
     return doc
+
+
+# ---------------------------------------------------------------------------------------------- writing
+
+def world_document(world: World) -> dict:
+    """``world`` as a world-file document (the JSON object of the module docstring).
+
+    The inverse of :func:`parse_world`: ``parse_world(world_document(w)) == w``, the difficulty included.
+    Optional keys that are empty are left out; numbers are written as they are held.
+    """
+    doc = {"name": world.name, "size": list(world.size)}
+    if world.walls:
+        doc["walls"] = [[*s.start, *s.end] for s in world.walls]
+    if world.obstacles:
+        doc["obstacles"] = [shape_document(s) for s in world.obstacles]
+    if world.unforeseen:
+        doc["unforeseen"] = [shape_document(s) for s in world.unforeseen]
+    if world.moving:
+        doc["moving"] = [{"shape": shape_document(m.shape), "path": _path_document(m.path)} for m in world.moving]
+    if world.events:
+        doc["events"] = [{"at_s": e.at_s, "add": [shape_document(s) for s in e.add], "known": e.known}
+                         for e in world.events]
+    doc["start"] = list(world.start)
+    doc["goal"] = {"path": _path_document(world.goal)} if world.moving_goal else list(world.goal)
+    doc["wall_thickness"] = world.wall_thickness
+    if world.difficulty is not None:
+        doc["difficulty"] = world.difficulty.to_dict()
+    return doc
+
+
+def shape_document(shape: Shape) -> dict:
+    """One shape as the world file writes it."""
+    if isinstance(shape, Box):
+        doc = {"type": "box", "center": list(shape.center), "size": list(shape.size)}
+        return {**doc, "angle": shape.angle} if shape.angle else doc
+    if isinstance(shape, Circle):
+        return {"type": "circle", "center": list(shape.center), "radius": shape.radius}
+    if isinstance(shape, Polygon):
+        return {"type": "polygon", "points": [list(p) for p in shape.points]}
+    return {"type": "segment", "from": list(shape.start), "to": list(shape.end)}
+
+
+def _path_document(path: Path_) -> dict:
+    if isinstance(path, CirclePath):
+        return {"type": "circle", "center": list(path.center), "radius": path.radius, "period_s": path.period_s,
+                "direction": path.direction, "phase": path.phase}
+    return {"type": "line", "from": list(path.start), "to": list(path.end), "speed_mps": path.speed_mps,
+            "bounce": path.bounce}
+
+
+def world_json(world: World) -> str:
+    """:func:`world_document` as JSON text, one wall, shape or mover a line (as the shipped worlds are laid out)."""
+    lines = []
+    for key, value in world_document(world).items():
+        if isinstance(value, list) and value and isinstance(value[0], (list, dict)) and key != "size":
+            items = ",\n".join(f"    {json.dumps(v)}" for v in value)
+            lines.append(f'  "{key}": [\n{items}\n  ]')
+        else:
+            lines.append(f"  {json.dumps(key)}: {json.dumps(value)}")
+    return "{\n" + ",\n".join(lines) + "\n}\n"
+
+
+def save_world(world: World, path) -> Path:
+    """Write ``world`` to the world file ``path`` (:func:`world_json`), atomically; returns the path."""
+    from ekm.files import atomic_write
+
+    path = Path(path)
+    with atomic_write(path) as tmp:
+        tmp.write_text(world_json(world))
+    return path

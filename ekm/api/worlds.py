@@ -1,16 +1,21 @@
-"""Worlds in Python: :func:`world` (one, by name or file) and :func:`worlds` (``ekm worlds``)."""
+"""Worlds in Python: :func:`world` (one, by name or file), :func:`worlds` (``ekm worlds``) and
+:func:`generate` (``ekm worlds --generate``)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
 
+from ekm.api.checks import choice, number, whole
 from ekm.api.result import Result
 from ekm.errors import InputError
 
+_PROG = "ekm worlds"
+
 
 def world(name_or_path):
-    """A named world (``ekm.worlds()`` lists them) or a world file (JSON, DESIGN §2), every key checked:
+    """A named world (``ekm.worlds()`` lists them), a world file (JSON, DESIGN §2) or a generated world
+    spelt ``FAMILY:SEED[:DIFFICULTY]`` (``"maze:7"``, see :func:`generate`), every key checked:
     a :class:`robots.worldfile.World` (sizes and positions in metres, angles in radians). A bad file
     raises :class:`ekm.errors.InputError` naming the file, the key and what is wrong.
 
@@ -86,3 +91,32 @@ def worlds(check=None) -> Worlds:
     if isinstance(check, (str, Path)):
         check = [check]
     return Worlds(tuple(world(p) for p in (check if check else named_worlds())))
+
+
+def generate(family: str, seed: int, difficulty: float | None = None):
+    """A generated world of ``family`` (``ekm worlds --help`` lists the families) from ``seed`` (int >= 0) at
+    ``difficulty`` (in [0, 1], 0 easy; None: drawn from the seed, so a range of seeds spans the levels).
+
+    Returns the :class:`robots.worldfile.World`, named by its spelling (``"maze:7"``, or ``"maze:7:0.6"``
+    with a difficulty), so ``ekm.world(w.name)`` and ``--world maze:7`` make it again, bit for bit. Its
+    ``difficulty`` holds the level and the measures of a route search independent of the planner (the
+    world always has a route): ``narrowest_passage_m``, ``route_length_m``, ``straight_m``, ``route_ratio``,
+    ``turns``, ``traps``, ``movers``. Bad arguments raise :class:`ekm.errors.InputError` worded as the
+    command line words them.
+
+    Example::
+
+        w = ekm.generate("maze", 7)
+        w.name, w.difficulty.level, w.difficulty.route_length_m     # "maze:7", 0.0..1.0, metres
+        robots.worldfile.save_world(w, "maze-7.json")               # what --out writes
+    """
+    from robots.generator import FAMILIES
+    from robots.generator import generate as make
+
+    choice(family, tuple(FAMILIES), "--generate", _PROG)
+    seed = whole(seed, "--seed", _PROG, strict=False)
+    if difficulty is not None:
+        difficulty = number(difficulty, "--difficulty", _PROG, strict=False)
+        if difficulty > 1.0:
+            raise InputError(f"{_PROG}: argument --difficulty: must be in [0, 1], got {difficulty:g}")
+    return make(family, seed, difficulty)

@@ -1,26 +1,54 @@
 """``ekm worlds``: list the named worlds, or validate world files (``--check``); draw them with
-``--plot DIR``."""
+``--plot DIR``; generate a benchmark world (``--generate FAMILY --seed N --out FILE``)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import print_json
+import argparse
+
+from ekm.cli.args import finite_float, nonneg_int, one_of, print_json
+from robots.generator import FAMILIES
+
+
+def _families() -> str:
+    width = max(map(len, FAMILIES))
+    lines = [f"  {name.ljust(width)}  {text}" for name, text in FAMILIES.items()]
+    return ("generated world families (--generate FAMILY --seed N [--difficulty D] --out FILE; the world's\n"
+            "name, FAMILY:SEED or FAMILY:SEED:D, is also a --world everywhere):\n" + "\n".join(lines))
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("worlds", help="list, check and draw worlds")
+    p = sub.add_parser("worlds", help="list, check, draw and generate worlds",
+                       description="List the named worlds, check world files, draw them, or generate a world "
+                                   "of one of the benchmark families below.",
+                       epilog=_families(), formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--plot", metavar="DIR", help="draw each world to DIR/NAME.png")
+    p.add_argument("--plot", metavar="DIR|PNG",
+                   help="draw each world to DIR/NAME.png (with --generate: the generated world to PNG)")
     p.add_argument("--check", metavar="FILE", nargs="+", help="validate world files (exit 2 on the first bad one)")
+    p.add_argument("--generate", metavar="FAMILY", type=one_of(tuple(FAMILIES)),
+                   help="generate a world of FAMILY (listed below); needs --seed and --out")
+    p.add_argument("--seed", metavar="N", type=nonneg_int, help="the generated world's seed (whole number >= 0)")
+    p.add_argument("--difficulty", metavar="D", type=finite_float,
+                   help="its difficulty in [0, 1] (default: drawn from the seed)")
+    p.add_argument("--out", metavar="FILE", help="write the generated world to FILE (.json)")
     p.set_defaults(func=run)
 
 
 def run(args) -> None:
     """List the named worlds, or validate world files (``--check``); draw them with ``--plot DIR``
-    (:func:`ekm.worlds`).
+    (:func:`ekm.worlds`); or generate a world (``--generate``, :func:`ekm.generate`).
 
     Every file is validated before anything is drawn or printed, so a bad file (exit 2) leaves no output
     behind; each PNG is written atomically.
     """
+    if args.generate is not None:
+        generate(args)
+        return
+    from ekm.errors import InputError
+
+    for option in ("seed", "difficulty", "out"):
+        if getattr(args, option) is not None:
+            raise InputError(f"ekm worlds: argument --{option}: only with --generate")
     from ekm.api.worlds import worlds as list_worlds
 
     result = list_worlds(check=args.check)
@@ -38,3 +66,42 @@ def run(args) -> None:
         print("  ".join(str(v).ljust(wd) if i < 2 else str(v).rjust(wd) for i, (v, wd) in enumerate(zip(r, widths))))
     for path in written:
         print(f"wrote {path}")
+
+
+def generate(args) -> None:
+    """``--generate FAMILY --seed N [--difficulty D] --out FILE [--plot PNG] [--json]``: the world file,
+    written atomically, and its counts and difficulty measures."""
+    from ekm.api.checks import output_path
+    from ekm.api.worlds import generate as make
+    from ekm.errors import InputError
+    from ekm.provenance import provenance
+    from robots.worldfile import save_world
+
+    if args.check:
+        raise InputError("ekm worlds: argument --check: not with --generate")
+    for option in ("seed", "out"):
+        if getattr(args, option) is None:
+            raise InputError(f"ekm worlds: argument --generate: needs --{option}")
+    out = output_path(args.out, "--out", ".json")
+    png = output_path(args.plot, "--plot", ".png") if args.plot else None
+    world = make(args.generate, args.seed, args.difficulty)
+    try:
+        save_world(world, out)
+    except OSError as exc:
+        raise InputError(f"--out {out}: cannot write ({exc.strerror or exc})") from None
+    if png is not None:
+        from robots.plot import plot_world, save_figure
+
+        save_figure(plot_world(world).figure, png)
+    d = world.difficulty
+    if args.json:
+        print_json({**world.counts(), "difficulty": d.to_dict(), "out": str(out), **provenance(jax=False)})
+        return
+    c = world.counts()
+    print(f"{world.name}: {d.family}, seed {d.seed}, difficulty {d.level:g}; {world.size[0]:g} x {world.size[1]:g} m, "
+          f"{c['walls']} walls, {c['unforeseen']} unforeseen, {c['moving']} moving")
+    print(f"  narrowest passage {d.narrowest_passage_m:.3f} m, route {d.route_length_m:.3f} m "
+          f"({d.route_ratio:.2f} x the straight {d.straight_m:.3f} m), {d.turns} turns, {d.traps} traps")
+    print(f"wrote {out}")
+    if png is not None:
+        print(f"wrote {png}")

@@ -1,0 +1,80 @@
+"""Generated worlds: a benchmark suite of families, each world made from a seed and a difficulty level.
+
+The idea is the BARN navigation benchmark's (Perille et al. 2020): many worlds of graded difficulty, made
+by a program rather than by hand, each checked to be solvable and labelled with measures of how hard it
+is. ``generate("maze", 7)`` is one world; its name, ``"maze:7"``, is also how
+:func:`robots.worldfile.load_world` (and so every ``--world`` option) spells it, so a worker process makes
+the same world from the name alone, bit for bit.
+
+- ``difficulty`` (the level D in [0, 1], 0 easy) scales each family's features (turns, traps, density,
+  rooms, movers, blockers). Left out, it is drawn uniformly from the seed's generator, so a range of
+  seeds spans the difficulties.
+- Every world goes through :func:`robots.worldfile.parse_world`, the checker a user's file meets, and
+  through :func:`robots.generator.reach.reach`, a grid search independent of the planner: a world without
+  a route is never returned (its builder tries again with the next sub-seed). The world's ``difficulty``
+  holds the search's measures.
+- Coordinates are rounded to 0.1 mm, so the world file is tidy and a world is the same in any process.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ekm.errors import InputError
+
+#: The families, in the order they are listed, each with its one-line description.
+FAMILIES = {
+    "corridor": "a closed corridor 8-15 cm wide that bends and zig-zags, 1 to 8 turns, start at one end",
+    "traps": "one to three unforeseen U, V and box-made traps in an open arena, open towards the robot",
+    "clutter": "unforeseen boxes and circles, denser with the difficulty, gaps down to 8 cm",
+    "maze": "2x2 to 4x4 rooms of known walls: a perfect maze with 8-12 cm doors, dead ends, half walls",
+    "movers": "rooms and corridors whose doorways and corridors 1 to 3 moving obstacles cross",
+    "blocked": "known walls with two or more routes; unforeseen boxes close the doors of the shortest",
+}
+
+_SPELLING = re.compile(r"([a-z]+):([^:]*)(?::([^:]*))?")
+
+
+def spelling(family: str, seed: int, difficulty: float | None = None) -> str:
+    """The name of a generated world: ``FAMILY:SEED`` or ``FAMILY:SEED:D`` (D as :func:`generate` rounds it)."""
+    return f"{family}:{seed}" if difficulty is None else f"{family}:{seed}:{round(float(difficulty), 4):g}"
+
+
+def parse_spelling(text: str) -> tuple[str, int, float | None] | None:
+    """``"maze:7"`` -> ``("maze", 7, None)``, ``"maze:7:0.6"`` -> ``("maze", 7, 0.6)``; None when ``text`` is
+    not of the form ``FAMILY:...`` with a known family. A known family with a bad seed or difficulty is an
+    :class:`~ekm.errors.InputError` naming the spelling."""
+    m = _SPELLING.fullmatch(str(text))
+    if m is None or m.group(1) not in FAMILIES:
+        return None
+    family, seed_text, level_text = m.groups()
+    if not seed_text.isdigit() or not seed_text.isascii():
+        raise InputError(f"{text}: the seed must be a whole number >= 0, got {seed_text!r}")
+    if level_text is None:
+        return family, int(seed_text), None
+    try:
+        level = float(level_text)
+    except ValueError:
+        level = None
+    if level is None or not 0.0 <= level <= 1.0:
+        raise InputError(f"{text}: the difficulty must be a number in [0, 1], got {level_text!r}")
+    return family, int(seed_text), level
+
+
+def generate(family: str, seed: int, difficulty: float | None = None):
+    """The world of ``family`` made from ``seed`` at difficulty level ``difficulty`` (in [0, 1]; None: drawn
+    from the seed), a :class:`robots.worldfile.World` named by its spelling, with its
+    :class:`~robots.worldfile.Difficulty` filled in. Bad arguments raise :class:`~ekm.errors.InputError`."""
+    import numbers
+
+    if family not in FAMILIES:
+        raise InputError(f"unknown world family {family!r} (families: {', '.join(FAMILIES)})")
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+        raise InputError(f"{family}: the seed must be a whole number >= 0, got {seed!r}")
+    if difficulty is not None and (isinstance(difficulty, bool) or not isinstance(difficulty, numbers.Real)
+                                   or not 0.0 <= difficulty <= 1.0):
+        raise InputError(f"{family}: the difficulty must be a number in [0, 1], got {difficulty!r}")
+    from robots.generator.families import build
+
+    return build(family, int(seed), None if difficulty is None else float(difficulty),
+                 spelling(family, int(seed), difficulty))
