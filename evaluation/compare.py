@@ -13,6 +13,7 @@ the rows of ``ekm compare`` (DESIGN §6) with each success rate's 95 % Wilson in
 
 from __future__ import annotations
 
+import functools
 import math
 from concurrent.futures import Executor
 from dataclasses import dataclass
@@ -43,34 +44,59 @@ _MAPS: dict = {}
 
 def run_job(job: Job) -> dict:
     """Run one job (in whichever process the executor chose): its outcome record, plus ``label``, ``trial``,
-    the ``given`` world spelling and, with ``keep_path``, ``path`` (the centre every 0.128 s, as lists)."""
+    the ``given`` world spelling, the world's ``family`` (generated worlds; None otherwise) and, with
+    ``keep_path``, ``path`` (the centre every 0.128 s, as lists).
+
+    A run that cannot start — a world the planner finds no route through at any cell — is a record too,
+    with ``failed`` (the one-line reason) and ``reached`` False: one bad world does not end a comparison."""
+    from ekm.errors import InputError
     from ekm.mapfile import load_maps
     from evaluation.scenario import run_architecture
     from robots.controllers.spec import parse_architecture
-    from robots.worldfile import load_world
-
     spec = parse_architecture(job.architecture)
     maps = None
     if job.map_path and spec.uses_map:
         if job.map_path not in _MAPS:  # one load per worker process, not one per run
             _MAPS[job.map_path] = load_maps(job.map_path)
         maps = _MAPS[job.map_path]
-    rec = run_architecture(load_world(job.world), spec, maps, seed=job.seed, config=job.config,
-                           source=job.map_path or "")
-    out = {**rec.outcome(), "label": job.label, "trial": job.trial, "given": job.world}
+    world = _world(job.world)
+    family = world_family(world)
+    try:
+        rec = run_architecture(world, spec, maps, seed=job.seed, config=job.config, source=job.map_path or "")
+    except InputError as exc:
+        return {"world": world.name, "architecture": job.architecture, "reached": False, "time_s": None,
+                "path_m": None, "collisions": 0, "checkpoints_reached": 0, "replans": 0, "trapped": False,
+                "final_distance_m": None, "contact_s": 0.0, "arrived": False, "recoveries": 0,
+                "ended": "failed", "failed": str(exc), "seed": job.seed, "label": job.label, "trial": job.trial,
+                "given": job.world, "family": family}
+    out = {**rec.outcome(), "label": job.label, "trial": job.trial, "given": job.world, "family": family}
     if job.keep_path:
         every = max(1, round(rec.period / (rec.times[1] - rec.times[0]))) if len(rec.times) > 1 else 1
         out["path"] = rec.poses[::every, :2].round(5).tolist()
     return out
 
 
+@functools.lru_cache(maxsize=256)
+def _world(spelling: str):
+    """The world of a job, read or generated once per worker process (a suite runs every architecture in it)."""
+    from robots.worldfile import load_world
+
+    return load_world(spelling)
+
+
+def world_family(world) -> str | None:
+    """The family of a generated world (its ``difficulty`` entry), None for any other world."""
+    difficulty = getattr(world, "difficulty", None)
+    return getattr(difficulty, "family", None)
+
+
 def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path: str | None = None,
          keep_paths: bool = False) -> list[Job]:
-    """Every (architecture, world, trial) of a comparison, in a fixed order; trial 0 keeps its path when
-    ``keep_paths``."""
+    """Every (architecture, world, trial) of a comparison, in a fixed order — world by world, so that a worker
+    plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``."""
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
                 map_path=map_path, keep_path=keep_paths and i == 0)
-            for spec in specs for w in worlds for i in range(trials)]
+            for w in worlds for i in range(trials) for spec in specs]
 
 
 def compare(job_list: list[Job], executor: Executor | None = None, on_done=None) -> list[dict]:
@@ -99,32 +125,56 @@ def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
     return (max(0.0, centre - half), min(1.0, centre + half))
 
 
+def _row(rs: list[dict]) -> dict:
+    """The summary of runs ``rs``: ``trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions,
+    trapped, contact_s, failed`` — the means over the runs that reached the goal (None if none did)."""
+    ok = [r for r in rs if r["reached"]]
+    lo, hi = wilson(len(ok), len(rs))
+    return {"trials": len(rs), "success_rate": round(len(ok) / len(rs), 4) if rs else None,
+            "success_ci95": [round(lo, 4), round(hi, 4)],
+            "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
+            "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
+            "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
+            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": sum("failed" in r for r in rs)}
+
+
 def summarize(records: list[dict], worlds, labels) -> list[dict]:
     """One row per (world, architecture) in the given order — DESIGN §6's ``results``: ``world,
-    architecture, trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions, trapped`` —
-    the means over the runs that reached the goal (None if none did)."""
+    architecture, trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions, trapped`` (then
+    ``contact_s``, ``failed``: runs that could not start, and ``runs_by_trial``, a letter per trial)."""
     rows = []
     for label in labels:
         for world in worlds:
             rs = [r for r in records if r["label"] == label and r["given"] == world]
-            ok = [r for r in rs if r["reached"]]
-            lo, hi = wilson(len(ok), len(rs))
-            rows.append({"world": rs[0]["world"] if rs else world, "architecture": label, "trials": len(rs),
-                         "success_rate": round(len(ok) / len(rs), 4) if rs else None,
-                         "success_ci95": [round(lo, 4), round(hi, 4)],
-                         "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
-                         "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
-                         "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
-                         "runs_by_trial": "".join(run_letter(r) for r in sorted(rs, key=lambda r: r["trial"]))})
+            row = {"world": rs[0]["world"] if rs else world, "architecture": label, **_row(rs)}
+            row["runs_by_trial"] = "".join(run_letter(r) for r in sorted(rs, key=lambda r: r["trial"]))
+            rows.append(row)
+    return rows
+
+
+def by_family(records: list[dict], labels) -> list[dict]:
+    """One row per (family, architecture) of the generated worlds' runs, families in the order of
+    :data:`robots.generator.FAMILIES` then ``"all"`` (every generated world): ``family, architecture, worlds``
+    and the summary of :func:`summarize`'s rows over all their runs."""
+    from robots.generator import FAMILIES
+
+    generated = [r for r in records if r.get("family")]
+    rows = []
+    for family in [f for f in FAMILIES if any(r["family"] == f for r in generated)] + (["all"] if generated else []):
+        for label in labels:
+            rs = [r for r in generated if r["label"] == label and family in ("all", r["family"])]
+            rows.append({"family": family, "architecture": label, "worlds": len({r["given"] for r in rs}),
+                         **_row(rs)})
     return rows
 
 
 def run_letter(r: dict) -> str:
-    """R reached, T trapped, C arrived after a collision, N no route after a change of the map, L time limit."""
+    """R reached, T trapped, C arrived after a collision, N no route (at the start, or after a change of the
+    map), L time limit."""
     if r["reached"]:
         return "R"
     if r["trapped"]:
         return "T"
     if r["arrived"]:
         return "C"
-    return "N" if "route" in r["ended"] else "L"
+    return "N" if "failed" in r or "route" in r["ended"] else "L"

@@ -25,21 +25,23 @@ def test_trial_i_runs_with_seed_plus_i_for_every_architecture_and_world():
     specs = parse_architectures("fusion,fields:form=thesis")
     job_list = jobs(["open-arena", "three-rooms"], specs, 3, 7, QUICK, keep_paths=True)
     assert len(job_list) == 2 * 2 * 3
-    assert [j.seed for j in job_list[:3]] == [7, 8, 9] and {j.seed for j in job_list} == {7, 8, 9}
-    assert [j.label for j in job_list[::6]] == ["fusion", "fields:form=thesis"]
-    assert [j.keep_path for j in job_list[:3]] == [True, False, False]
+    assert [j.seed for j in job_list[:6]] == [7, 7, 8, 8, 9, 9] and {j.seed for j in job_list} == {7, 8, 9}
+    assert [j.label for j in job_list[:2]] == ["fusion", "fields:form=thesis"]
+    assert [j.world for j in job_list[::6]] == ["open-arena", "three-rooms"]  # world by world
+    assert [j.keep_path for j in job_list[:6]] == [True, True, False, False, False, False]
 
 
 def test_summary_rows_carry_design_keys_means_of_successes_and_intervals():
     records = [{"label": "a", "given": "w", "world": "w", "trial": i, "reached": i < 3, "trapped": i == 3,
-                "arrived": i < 3, "ended": "x", "time_s": 10.0 + i, "path_m": 1.0, "collisions": int(i == 4)}
+                "arrived": i < 3, "ended": "x", "time_s": 10.0 + i, "path_m": 1.0, "collisions": int(i == 4),
+                "contact_s": 0.25 * (i == 4)}
                for i in range(5)]
     (row,) = summarize(records, ["w"], ["a"])
     assert list(row)[:9] == ["world", "architecture", "trials", "success_rate", "success_ci95", "mean_time_s",
                              "mean_path_m", "collisions", "trapped"]
     assert row["success_rate"] == 0.6 and row["mean_time_s"] == 11.0 and row["trapped"] == 1
     assert row["collisions"] == 1 and row["success_ci95"] == pytest.approx(wilson(3, 5), abs=1e-4)
-    assert row["runs_by_trial"] == "RRRTL"
+    assert row["runs_by_trial"] == "RRRTL" and row["contact_s"] == 0.25 and row["failed"] == 0
 
 
 def test_a_job_is_a_pure_function_of_its_fields():

@@ -6,7 +6,7 @@ import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from ekm.api.checks import number, whole
+from ekm.api.checks import whole
 from ekm.api.result import Result
 from ekm.errors import InputError
 
@@ -19,8 +19,10 @@ class Table(Result):
     within each), each a dict with ``world``, ``architecture``, ``trials``, ``success_rate`` and its 95 %
     Wilson interval ``success_ci95``, ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
     ``trapped`` and ``runs_by_trial`` (a letter per trial); ``seconds`` the wall time and ``workers`` where
-    the runs went. ``to_dict()`` is ``ekm compare --json``; ``plot()`` draws the success rates with
-    their intervals and the first trial's path in each world.
+    the runs went. ``families``: with generated worlds, one row per family and architecture (and
+    ``"all"``), each with the number of ``worlds`` and the same summary over their runs. ``to_dict()`` is
+    ``ekm compare --json``; ``plot()`` draws the success rates with their intervals and the first trial's
+    path in each world (by family, with one example world each, for a suite).
     """
 
     rows: tuple
@@ -32,13 +34,16 @@ class Table(Result):
     workers: str
     config: object = field(repr=False)
     records: tuple = field(repr=False, compare=False, default=())
+    families: tuple = ()
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance
 
-        return {"results": [{k: v for k, v in r.items() if k != "runs_by_trial"} for r in self.rows],
-                "trials": self.trials, "seed": self.seed, "seconds": round(self.seconds, 2), "runs": len(self.records),
-                "workers": self.workers, "config": asdict(self.config), **provenance()}
+        out = {"results": [{k: v for k, v in r.items() if k != "runs_by_trial"} for r in self.rows]}
+        if self.families:
+            out["families"] = list(self.families)
+        return {**out, "trials": self.trials, "seed": self.seed, "seconds": round(self.seconds, 2),
+                "runs": len(self.records), "workers": self.workers, "config": asdict(self.config), **provenance()}
 
     def plot(self):
         """Success rates with their 95 % intervals, and one path per architecture and world; returns the
@@ -72,17 +77,46 @@ def _names(items, option: str) -> tuple[str, list[str]]:
     return text, names
 
 
-def compare(worlds, architectures, *, trials: int = 10, seed: int = 0, maps=None, recover: bool = False,
-            time_limit: float = 120.0, workers: int | None = None, scheduler: str | None = None,
-            progress: bool = False) -> Table:
+def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
+    """The generated worlds of ``suite`` — ``"FAMILY:COUNT[,FAMILY:COUNT...]"`` or a list of such items — as
+    spellings ``FAMILY:SEED`` with seeds ``first_seed … first_seed + COUNT − 1`` for each family (seeds from
+    1000 on are the test seeds: no parameter of the package was chosen on them)."""
+    from robots.generator import FAMILIES
+
+    items = [t.strip() for t in suite.split(",")] if isinstance(suite, str) else [str(t) for t in suite]
+    first_seed = whole(first_seed, "--world-seed", _PROG, strict=False)
+    names = []
+    for item in items:
+        family, sep, count = item.partition(":")
+        if family not in FAMILIES:
+            raise InputError(f"--suite {item!r}: unknown family {family!r} (families: {', '.join(FAMILIES)})")
+        try:
+            n = int(count) if sep else -1
+        except ValueError:
+            n = -1
+        if n < 1:
+            raise InputError(f"--suite {item!r}: expected FAMILY:COUNT with COUNT a whole number >= 1")
+        names += [f"{family}:{first_seed + i}" for i in range(n)]
+    return names
+
+
+def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None, world_seed: int = 1000,
+            trials: int = 10, seed: int = 0, maps=None, recover: bool = True,
+            time_limit: float = 120.0, checkpoints: str = "visible", cell: float | None = None,
+            workers: int | None = None, scheduler: str | None = None, progress: bool = False) -> Table:
     """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
     intervals (thesis ch. 6.2 at scale). Trial i runs with seed ``seed + i`` for every architecture and
     world (the same noise for all of them), so the result does not depend on ``workers`` or ``scheduler``.
 
     Parameters
     ----------
-    worlds : list of str or World, or "W1,W2,..."
-        Named worlds or world files.
+    worlds : list of str or World, or "W1,W2,...", optional
+        Named worlds, world files or generated worlds (``maze:7``).
+    suite : str or list, optional
+        Generated worlds by family, ``"corridor:20,maze:20"`` (:func:`suite_worlds`): COUNT worlds of each
+        family with seeds ``world_seed …``; the table then also reports by family.
+    world_seed : int, default 1000
+        First seed of the suite's worlds (1000 on: the test seeds).
     architectures : list of str, or "A1[:k=v,...],A2,..."
         As :func:`ekm.run` spells them.
     trials : int, default 10
@@ -91,10 +125,15 @@ def compare(worlds, architectures, *, trials: int = 10, seed: int = 0, maps=None
         Trial i runs with seed ``seed + i``.
     maps : path or Maps saved to a file, optional
         Map for the EKM architectures (default: their shipped maps); the workers read the file.
-    recover : bool, default False
-        Cognizant-failure recovery on (thesis 7.1.1).
+    recover : bool, default True
+        Cognizant-failure recovery (thesis 7.1.1): when trapped, the sensed obstacle joins the planner's
+        map and the route is replanned; False ends a run at its first trap.
     time_limit : float, default 120
         Simulated seconds per run.
+    checkpoints : {"visible", "thesis"}, default "visible"
+        The planner's checkpoint rule (:func:`ekm.run`).
+    cell : float, optional
+        The planner's bitmap cell in metres (default 0.02, refined automatically where needed).
     workers : int, optional
         Local worker processes (default: the machine's cores; 1 runs in this process). Worker processes
         are spawned, so a script that calls :func:`compare` with several needs the usual
@@ -115,25 +154,29 @@ def compare(worlds, architectures, *, trials: int = 10, seed: int = 0, maps=None
     import time
 
     from ekm.api.worlds import world as load_world
-    from evaluation.compare import compare as run_all, jobs, summarize
-    from evaluation.scenario import ScenarioConfig
+    from ekm.api.driving import scenario_config
+    from evaluation.compare import by_family, compare as run_all, jobs, summarize
     from robots.controllers.spec import parse_architectures
 
     trials = whole(trials, "--trials", _PROG, strict=True)
     seed = whole(seed, "--seed", _PROG, strict=False)
-    time_limit = number(time_limit, "--time-limit", _PROG, strict=True)
+    config = scenario_config(_PROG, time_limit=time_limit, recover=recover, checkpoints=checkpoints, cell=cell)
     if workers is not None:
         workers = whole(workers, "--workers", _PROG, strict=True)
-    _, names = _names(worlds, "--worlds")
+    names = _names(worlds, "--worlds")[1] if (isinstance(worlds, (str, Path)) and str(worlds)) or \
+        (not isinstance(worlds, (str, Path)) and len(worlds)) else []
     for w in names:
         load_world(w)
+    if suite:
+        names += [w for w in suite_worlds(suite, world_seed) if w not in names]
+    if not names:
+        raise InputError(f"{_PROG}: no worlds: give --worlds, --suite or both")
     text = architectures if isinstance(architectures, str) else ",".join(architectures)
     specs = parse_architectures(text)
     labels = [s.label for s in specs]
     if len(set(labels)) != len(labels):
         raise InputError(f"--architectures {text!r}: an architecture is named twice")
     map_path = _map_path(maps)
-    config = ScenarioConfig(time_limit=time_limit, recover=bool(recover))
     job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True)
     bar, on_done = None, None
     if progress:
@@ -155,7 +198,8 @@ def compare(worlds, architectures, *, trials: int = 10, seed: int = 0, maps=None
     seconds = time.perf_counter() - t0
     where = f"Dask at {scheduler}" if scheduler else f"{workers or os.cpu_count()} local workers"
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
-                 trials=trials, seed=seed, seconds=seconds, workers=where, config=config, records=tuple(records))
+                 trials=trials, seed=seed, seconds=seconds, workers=where, config=config, records=tuple(records),
+                 families=tuple(by_family(records, labels)))
 
 
 def _map_path(maps) -> str | None:

@@ -5,15 +5,22 @@ from __future__ import annotations
 
 import os
 
-from ekm.cli.args import nonneg_int, output_path, positive_float, positive_int, print_json, show_progress
+from ekm.cli.args import nonneg_int, output_path, positive_int, print_json, show_progress
+from ekm.cli.run import add_scenario_options
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("compare", help="compare architectures over worlds and seeds (parallel; Dask optional)")
-    p.add_argument("--worlds", required=True, metavar="W1,W2,...", help="named worlds or world files, comma-separated")
-    p.add_argument("--architectures", required=True, metavar="A1[:k=v,...],A2,...",
+    p.add_argument("--worlds", default="", metavar="W1,W2,...",
+                   help="named worlds, world files or generated worlds (maze:7), comma-separated")
+    p.add_argument("--suite", metavar="FAMILY:COUNT,...",
+                   help="generated worlds, COUNT of each family (ekm worlds --help lists the families), with seeds "
+                        "from --world-seed; the table then reports by family")
+    p.add_argument("--world-seed", type=nonneg_int, default=1000, metavar="N",
+                   help="first seed of the --suite worlds (default 1000: the test seeds, never tuned on)")
+    p.add_argument("--architectures", default="fusion,fields,samba,schema", metavar="A1[:k=v,...],A2,...",
                    help="as ekm run spells them, comma-separated; a k=v after a comma continues the architecture "
-                        "before it (fusion:sensors=long,beta=0.8,fields)")
+                        "before it (fusion:sensors=long,beta=0.8,fields); default fusion,fields,samba,schema")
     p.add_argument("--trials", type=positive_int, default=10, help="runs per architecture and world (default 10)")
     p.add_argument("--seed", type=nonneg_int, default=0,
                    help="trial i runs with seed SEED + i for every architecture and world (default 0)")
@@ -23,9 +30,7 @@ def add_parser(sub) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="send the runs to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
-    p.add_argument("--recover", action="store_true", help="cognizant-failure recovery on (thesis 7.1.1)")
-    p.add_argument("--time-limit", type=positive_float, default=120.0, metavar="S",
-                   help="simulated seconds per run (default 120)")
+    add_scenario_options(p)
     p.add_argument("--plot", metavar="PNG", help="success rates with their intervals, and one path per cell")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
@@ -41,8 +46,9 @@ def run(args) -> None:
         from evaluation.pinning import pin_to_one_cpu
 
         pin_to_one_cpu()
-    table = compare(args.worlds, args.architectures, trials=args.trials, seed=args.seed, maps=args.map,
-                    recover=args.recover, time_limit=args.time_limit, workers=args.workers, scheduler=args.scheduler,
+    table = compare(args.worlds, args.architectures, suite=args.suite, world_seed=args.world_seed, trials=args.trials, seed=args.seed, maps=args.map,
+                    recover=args.recover, time_limit=args.time_limit, checkpoints=args.checkpoints, cell=args.cell,
+                    workers=args.workers, scheduler=args.scheduler,
                     progress=show_progress(args))
     if plot:
         table.save_plot(plot)
@@ -51,9 +57,34 @@ def run(args) -> None:
         return
     print(f"{len(table.records)} runs ({len(table.labels)} architectures x {len(table.worlds)} worlds x {args.trials} "
           f"trials, seeds {args.seed}..{args.seed + args.trials - 1}) in {table.seconds:.0f} s on {table.workers}")
-    print_table(table.rows)
+    if table.families:
+        print_families(table.families)
+        named = [r for r in table.rows if not any(r["world"] == g["given"] for g in table.records if g.get("family"))]
+        if named:
+            print_table(named)
+    else:
+        print_table(table.rows)
     if plot:
         print(f"plot written to {plot}")
+
+
+def print_families(rows) -> None:
+    """The comparison by family of generated worlds: success with its 95 % interval over all their runs."""
+    head = ("family", "architecture", "worlds", "success", "95 % interval", "time s", "trapped", "collisions", "failed")
+    lines = [head]
+    for r in rows:
+        lo, hi = r["success_ci95"]
+        ok = round(r["success_rate"] * r["trials"])
+        lines.append((r["family"], r["architecture"], str(r["worlds"]), f"{ok}/{r['trials']}", f"{lo:.2f}-{hi:.2f}",
+                      "" if r["mean_time_s"] is None else f"{r['mean_time_s']:.1f}", str(r["trapped"]),
+                      str(r["collisions"]), str(r["failed"])))
+    _print(lines)
+
+
+def _print(lines) -> None:
+    widths = [max(len(str(line[i])) for line in lines) for i in range(len(lines[0]))]
+    for line in lines:
+        print("  ".join(str(v).ljust(w) for v, w in zip(line, widths)).rstrip())
 
 
 def print_table(rows) -> None:
@@ -67,6 +98,4 @@ def print_table(rows) -> None:
                       "" if r["mean_time_s"] is None else f"{r['mean_time_s']:.1f}",
                       "" if r["mean_path_m"] is None else f"{r['mean_path_m']:.2f}",
                       str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]))
-    widths = [max(len(str(line[i])) for line in lines) for i in range(len(head))]
-    for line in lines:
-        print("  ".join(str(v).ljust(w) for v, w in zip(line, widths)).rstrip())
+    _print(lines)
