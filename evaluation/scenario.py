@@ -74,6 +74,8 @@ class ScenarioConfig:
     start_reach: float = 0.06  # m: a replan may start this far from the robot (pressed into a new cushion)
     pass_radius: float = 0.1  # m: visible checkpoints: within this of one whose successor it sees, the robot
     #                           moves on to the successor
+    look_every: int = 4  # ticks: visible checkpoints: this often the robot looks for a later checkpoint it sees
+    look_ahead: int = 3  # ... among this many after the current one, and moves on to the last it sees
     turn_s: float = 3.0  # s: after a recovery the robot turns on the spot to face the new route for at most this
     turn_tolerance: float = 0.2  # rad: ... until the first checkpoint is within this of straight ahead
 
@@ -87,6 +89,9 @@ class ScenarioConfig:
                 raise InputError(f"scenario: {name} must be a positive number, got {value!r}")
         if self.capture_radius is not None and not self.capture_radius > 0:
             raise InputError(f"scenario: capture_radius must be > 0, got {self.capture_radius!r}")
+        if self.look_every < 1 or self.look_ahead < 0:
+            raise InputError(f"scenario: look_every must be >= 1 and look_ahead >= 0, got {self.look_every}, "
+                             f"{self.look_ahead}")
         if self.max_recoveries < 0:
             raise InputError(f"scenario: max_recoveries must be >= 0, got {self.max_recoveries}")
 
@@ -177,7 +182,7 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     state = controller.init()
     step = _in_one_loop(controller.step)
     poses, times = [sim.pose], [0.0]
-    sensed = []  # (t, pose, readings) of every tick whose IR saw something: RunRecord.hits, made when needed
+    sensed = []  # (t, pose, readings, markers) of every tick whose IR saw something: RunRecord.hits, made when needed
     last_t, collisions, settled_since, turn_until = 0.0, 0, None, 0.0
     ticks = int(math.ceil(config.time_limit / period - 1e-9))
 
@@ -212,20 +217,31 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             rec.checkpoint_log.append((t, *current.checkpoints[index]))
             index, target_id = index + 1, target_id + 1
             monitor.reset(t)
+        # ... and, every look_every ticks, a later checkpoint the robot already sees from wherever a detour has
+        # taken it (round a blocked door, say): the checkpoints before it are behind the robot.
+        if current.rule == "visible" and tick % config.look_every == 0 and index < len(current.checkpoints) - 1:
+            later = _seen_later(sim.pose[:2], current, index, config, sight)
+            for j in range(index, later):
+                rec.checkpoint_log.append((t, *current.checkpoints[j]))
+                target_id += 1
+            if later > index:
+                index = later
+                monitor.reset(t)
         final = index == len(current.checkpoints) - 1
         goal = target_xy(t)
         rec.goal_path = np.vstack([rec.goal_path, goal[None]]) if world.moving_goal else rec.goal_path
         pose = sim.pose
         ir = sim.sense(controller.sensors)
+        markers = _markers(world, sim, t, radii)
         if np.isfinite(ir).any():
-            sensed.append((t, pose, ir))
+            sensed.append((t, pose, ir, markers))
         obs = Observation(
             t=np.float32(t), ir=ir.astype(np.float32),
             target=np.asarray(egocentric(pose, goal), np.float32), target_id=np.int32(target_id),
             final=np.bool_(final), pose=pose.astype(np.float32),
             target_velocity=np.asarray(world.goal.velocity(t) if (final and world.moving_goal) else (0.0, 0.0),
                                        np.float32),
-            markers=_markers(world, sim, t, radii))
+            markers=markers)
         if t < turn_until and abs(float(obs.target[0])) > config.turn_tolerance:
             command = _turn_on_the_spot(float(obs.target[0]), robot)  # recovery: face the new route first
         else:
@@ -296,6 +312,17 @@ def _turn_on_the_spot(alpha: float, robot) -> np.ndarray:
     touching."""
     v = 0.5 * robot.max_wheel_speed * (1.0 if alpha > 0 else -1.0)
     return np.array([-v, v])
+
+
+def _seen_later(position, current, index: int, config: ScenarioConfig, sight) -> int:
+    """The last of the ``look_ahead`` checkpoints after ``index`` that the robot at ``position`` sees (as
+    :func:`_sees_next` measures it), or ``index`` if it sees none of them."""
+    need = min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
+    last = min(index + config.look_ahead, len(current.checkpoints) - 1)
+    for j in range(last, index, -1):
+        if visibility.segment_slack(position, current.checkpoints[j], sight) >= need:
+            return j
+    return index
 
 
 def _sees_next(position, current, index: int, config: ScenarioConfig, sight) -> bool:
@@ -373,11 +400,11 @@ def _looped(func, static):
 
 
 def _hits(sensed: list, controller: Controller) -> list:
-    """``RunRecord.hits`` — (t, world points ``(n, 2)`` the IR saw) — of the ``sensed`` ticks (t, pose, readings),
-    all in one :func:`~robots.controllers.base.hit_points` call rather than one call a tick."""
+    """``RunRecord.hits`` — (t, world points ``(n, 2)`` the IR saw) — of the ``sensed`` ticks (t, pose, readings,
+    markers), all in one :func:`~robots.controllers.base.hit_points` call rather than one call a tick."""
     if not sensed:
         return []
-    ts, poses, readings = zip(*sensed)
+    ts, poses, readings, _ = zip(*sensed)
     pts, seen = hit_points(np.array(poses), np.array(readings), controller.sensors.angles, controller.robot.radius)
     return [(t, p[s]) for t, p, s in zip(ts, pts, seen)]
 
@@ -391,14 +418,19 @@ def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.
     return np.concatenate([pos, vel, radii[:, None]], axis=1).astype(np.float32)
 
 
-def sensed_points(sensed: list, controller: Controller) -> tuple[np.ndarray, np.ndarray]:
-    """Every obstacle point the IR saw in the ``sensed`` ticks (t, pose, readings), ``(n, 2)``, and the reading
-    ``(n,)`` (m from the body surface) each came from."""
+def sensed_points(sensed: list, controller: Controller, margin: float = 0.01) -> tuple[np.ndarray, np.ndarray]:
+    """Every still obstacle point the IR saw in the ``sensed`` ticks (t, pose, readings, markers), ``(n, 2)``, and
+    the reading ``(n,)`` (m from the body surface) each came from. A point within a declared mover's radius +
+    ``margin`` of where the mover was at that tick is the mover, not an obstacle to plan round."""
     if not sensed:
         return np.zeros((0, 2)), np.zeros(0)
-    _, poses, readings = zip(*sensed)
+    _, poses, readings, markers = zip(*sensed)
     readings = np.array(readings)
     pts, seen = hit_points(np.array(poses), readings, controller.sensors.angles, controller.robot.radius)
+    markers = np.array(markers).reshape(len(sensed), -1, 5)  # (ticks, k, 5)
+    if markers.shape[1]:
+        gap = np.linalg.norm(pts[:, :, None, :] - markers[:, None, :, :2], axis=-1)  # (ticks, m, k)
+        seen &= ~np.any(gap <= markers[:, None, :, 4] + margin, axis=-1)
     return pts[seen], readings[seen]
 
 

@@ -79,13 +79,13 @@ def _box_near(box, lo, hi, grow: float) -> bool:
 def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: float, start, goal,
                obstacles: Sequence[Padded], margin: float = MARGIN, weight: float = WEIGHT):
     """The path of step 2 (module docstring): points ``(n, 2)`` from ``start`` through the centres of free
-    bitmap cells of the ``route``'s cells to ``goal``, and the slack ``(n,)`` of each point; None if the
+    bitmap cells of the ``route``'s cells to ``goal``, and the slack ``(n,)`` of each point; then the centres
+    ``(m, 2)`` and slacks ``(m,)`` of all those free cells (where :func:`taut` may put a corner). None if the
     route's cells do not join start and goal (which a plan's route always does)."""
     inside = (W == FREE) & np.isin(labels, np.asarray(route))
     first, last = free_cell_at(W, start, cell), free_cell_at(W, goal, cell)
     if first is None or last is None or not inside[first] or not inside[last]:
         return None
-    ny, nx = W.shape
     iy, ix = np.nonzero(inside)
     centres = (np.stack([ix, iy], axis=-1) + 0.5) * cell
     s = np.full(W.shape, -np.inf)
@@ -101,7 +101,7 @@ def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: fl
     pts = np.array([((x + 0.5) * cell, (y + 0.5) * cell) for y, x in cells])
     pts = np.vstack([np.asarray(start, float)[None, :2], pts, np.asarray(goal, float)[None, :2]])
     ends = slack(pts[[0, -1]], obstacles)
-    return pts, np.concatenate([[ends[0]], s[tuple(np.array(cells).T)], [ends[1]]])
+    return pts, np.concatenate([[ends[0]], s[tuple(np.array(cells).T)], [ends[1]]]), centres, s[iy, ix]
 
 
 _MOVES = ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1))
@@ -139,56 +139,89 @@ def _dijkstra(inside: np.ndarray, penalty: np.ndarray, first, last) -> dict | No
 
 
 def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], margin: float = MARGIN,
-         tolerance: float = TOLERANCE) -> np.ndarray:
+         tolerance: float = TOLERANCE, cells: tuple[np.ndarray, np.ndarray] | None = None,
+         near: float = 0.06) -> np.ndarray:
     """Step 3 (module docstring): the corners ``(k, 2)`` of ``points`` ``(n, 2)`` pulled taut, the last point last.
 
-    A leg from point i to point j is *clear* when the straight segment keeps ``min(margin, min(slacks[i..j]))
-    − tolerance``. First, from each corner the next is the last point before the first that no clear leg
-    reaches; then each corner slides along the path between its neighbours to the point that makes the two
-    legs shortest while both stay clear (so corners sit where the path turns round an obstacle, not
-    wherever the first pass stopped), and a corner whose neighbours see each other is dropped; repeated
-    until nothing changes.
+    A leg between corners is *clear* when the straight segment keeps ``min(margin, least slack of the path
+    between them, the corners' own slack) − tolerance``. First, from each corner the next is the last point
+    before the first that no clear leg reaches; then, until nothing changes: a corner whose neighbours see
+    each other is dropped; two corners that one point can replace — a path point, or a free cell
+    (``cells``: centres ``(m, 2)`` and slacks ``(m,)``) within ``near`` of them — are replaced by it (a cell
+    path can take one bend in two steps), even if the legs get up to ``near / 3`` longer; and each corner slides along the path between its neighbours to
+    the point that makes its two legs shortest while both stay clear (so corners sit where the path turns
+    round an obstacle, not wherever the first pass stopped).
     """
     n = len(points)
     floor = np.minimum(slacks, margin)
+    # A corner: (point, its slack capped at margin, the path index whose stretch it stands for).
+    Corner = tuple
 
+    def need(a: Corner, c: Corner) -> float:
+        i, j = sorted((a[2], c[2]))
+        return min(float(floor[i:j + 1].min()), a[1], c[1]) - tolerance
 
-    def clear(i: int, j: int) -> bool:
-        need = float(floor[min(i, j):max(i, j) + 1].min()) - tolerance
-        return segment_slack(points[i], points[j], obstacles) >= need
+    def clear(a: Corner, c: Corner, stretch=None) -> bool:
+        """Whether the leg a–c is clear; ``stretch`` (two corners) widens the path stretch whose least slack
+        counts, for a corner that replaces those between them."""
+        least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
+        return segment_slack(a[0], c[0], obstacles) >= least
 
-    corners = [0]
+    def at(i: int) -> Corner:
+        return (points[i], float(floor[i]), i)
+
+    def length(ks) -> float:
+        return float(sum(np.linalg.norm(q[0] - p[0]) for p, q in zip(ks[:-1], ks[1:])))
+
+    def via(a: Corner, c: Corner, current: float, extra=()):
+        """The point b (a path point between a and c, or one of ``extra``) that makes a → b → c shortest with
+        both legs clear, if shorter than ``current``; None if there is none."""
+        options = [at(i) for i in range(a[2] + 1, c[2])] + list(extra)
+        options.sort(key=lambda b: length([a, b, c]))
+        for b in options:
+            if length([a, b, c]) >= current - 1e-12:
+                return None
+            if clear(a, b, (a, c)) and clear(b, c, (a, c)):
+                return b
+        return None
+
+    corners = [at(0)]
     i = 0
     while i < n - 1:
         j = i + 1
-        while j + 1 < n and clear(i, j + 1):
+        while j + 1 < n and clear(at(i), at(j + 1)):
             j += 1
-        corners.append(j)
+        corners.append(at(j))
         i = j
-
     for _ in range(8):
         changed = False
         k = 1
         while k < len(corners) - 1:
-            a, c = corners[k - 1], corners[k + 1]
-            if clear(a, c):
+            a, b, c = corners[k - 1], corners[k], corners[k + 1]
+            if clear(a, c):  # the corner is not needed
                 del corners[k]
                 changed = True
                 continue
-            length = lambda b: float(np.linalg.norm(points[b] - points[a]) + np.linalg.norm(points[c] - points[b]))
-            best = corners[k]
-            for b in sorted(range(a + 1, c), key=length):
-                if length(b) >= length(best) - 1e-12:
-                    break
-                if clear(a, b) and clear(b, c):
-                    best = b
-                    break
-            if best != corners[k]:
-                corners[k], changed = best, True
+            if k + 2 < len(corners):  # two corners where one would do (one bend taken in two steps)
+                d = corners[k + 2]
+                extra = ()
+                if cells is not None:
+                    centres, cell_slack = cells
+                    close = np.nonzero(np.minimum(np.linalg.norm(centres - b[0], axis=1),
+                                                  np.linalg.norm(centres - c[0], axis=1)) <= near)[0]
+                    extra = [(centres[m], float(min(cell_slack[m], margin)), b[2]) for m in close]
+                one = via(a, d, length([a, b, c, d]) + near / 3, extra)  # one corner fewer is worth 2 cm
+                if one is not None:
+                    corners[k:k + 2] = [(one[0], one[1], b[2])]
+                    changed = True
+                    continue
+            one = via(a, c, length([a, b, c]))  # the corner slides to where the two legs are shortest
+            if one is not None and one[2] != b[2]:
+                corners[k], changed = one, True
             k += 1
         if not changed:
             break
-    return np.array(points[corners[1:]], dtype=float).reshape(-1, 2)
+    return np.array([p for p, _, _ in corners[1:]], dtype=float).reshape(-1, 2)
 
 
 def visible_checkpoints(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: float, start, goal,
@@ -198,7 +231,7 @@ def visible_checkpoints(W: np.ndarray, labels: np.ndarray, route: Sequence[int],
     found = route_path(W, labels, route, cell, start, goal, obstacles, margin)
     if found is None:
         return None
-    pts, s = found
-    corners = taut(pts, s, obstacles, margin)
+    pts, s, centres, cell_slack = found
+    corners = taut(pts, s, obstacles, margin, cells=(centres, cell_slack))
     corners[-1] = np.asarray(goal, dtype=float)[:2]
     return corners

@@ -89,7 +89,7 @@ def test_replanning_starts_where_the_robot_is_even_inside_the_cushion():
     """A robot pressed against a wall (centre 22 mm from it, inside the 25 mm cushion) still gets a plan
     from its own position; plan() would refuse such a start as user input."""
     world = load_world("three-rooms-changed")
-    before = plan(world)
+    before = plan(world, checkpoints="thesis")
     against_wall = (0.4 + 0.005 + 0.022, 0.45)
     with pytest.raises(InputError, match="not in the free space"):
         plan(world, against_wall)

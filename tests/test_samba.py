@@ -209,3 +209,52 @@ def test_the_maps_of_a_recorded_tick_give_the_command_the_run_sent():
     assert tick.goto.shape == tick.avoid.shape == tick.composite.shape == (72, 8)
     np.testing.assert_array_equal(np.asarray(tick.composite), np.asarray(am.mav(tick.goto, tick.avoid)))
     assert float(np.max(tick.avoid)) <= 0.0 <= float(np.min(tick.goto))
+
+
+def test_with_no_positive_action_samba_takes_the_free_action_that_closes_fastest():
+    """closer_when_stuck by hand: a target straight ahead (α = 0) 0.3 m away, still. Straight ahead collides
+    within 0.1 s at every speed; every other action is free. The free action closing fastest is the top speed
+    at the direction nearest ahead, ±5°: closing 0.16 cos 5° m/s. With a positive action left, nothing changes;
+    at a fixed goal 3 mm away, where the Goto map allows no speed (3 mm / 0.2 s < the slowest 0.02 m/s), the
+    robot stays stopped."""
+    p = samba.SambaParams()
+    grid = p.grid(KHEPERA)
+    times = np.full(grid.shape, np.inf, np.float32)
+    times[0, :] = 0.1
+    obs = Observation(t=np.float32(0), ir=np.full(12, np.inf, np.float32), target=np.array([0.0, 0.3], np.float32),
+                      target_id=np.int32(0), final=np.bool_(True), pose=np.zeros(3, np.float32),
+                      target_velocity=np.zeros(2, np.float32), markers=np.zeros((0, 5), np.float32))
+    i, j, go = samba.closer_when_stuck(0, 0, False, jnp.asarray(times), obs, p, grid)
+    assert bool(go) and int(j) == grid.speeds - 1 and int(i) in (1, grid.directions - 1)
+    assert (int(i), int(j), bool(go)) == tuple(map(lambda a: a.item(), samba.closer_when_stuck(
+        int(i), int(j), False, jnp.asarray(times), obs, p, grid)))  # deterministic
+    i, j, go = samba.closer_when_stuck(7, 3, True, jnp.asarray(times), obs, p, grid)
+    assert (int(i), int(j), bool(go)) == (7, 3, True)
+    at_goal = obs._replace(target=np.array([0.0, 0.003], np.float32))
+    assert not bool(samba.closer_when_stuck(0, 0, False, jnp.asarray(times), at_goal, p, grid)[2])
+
+
+def test_samba_never_stands_beside_a_post_while_a_free_action_brings_it_closer():
+    """Issue 21's freeze: a target crossing the arena at 0.1 m/s past a small post. With ``closer`` the robot
+    never sends a zero command for more than one tick before it catches the target; without it, it stood still
+    beside the post for 3.6 s (seed 0)."""
+    doc = {"name": "post", "size": [1.2, 0.8], "unforeseen": [{"type": "circle", "center": [0.685, 0.634],
+                                                                 "radius": 0.02}],
+           "start": [0.186, 0.206, 1.57],
+           "goal": {"path": {"type": "line", "from": [0.1, 0.5919], "to": [1.1, 0.5919], "speed_mps": 0.1,
+                             "bounce": False}}}
+    world = parse_world(doc, "post.json")
+
+    def longest_stop(arch):
+        rec = run_architecture(world, parse_architecture(arch), seed=0)
+        zero = [max(abs(l), abs(r)) < 1e-12 for _, l, r in rec.commands]
+        run = best = 0
+        for z in zero:
+            run = run + 1 if z else 0
+            best = max(best, run)
+        return rec, best
+
+    rec, stop = longest_stop("samba")
+    assert rec.reached and stop <= 1
+    _, stop = longest_stop("samba:closer=false")
+    assert stop * KHEPERA.avoid_period > 2.0

@@ -298,3 +298,47 @@ def test_step_refuses_a_period_that_is_not_whole_sub_steps():
 def test_seed_must_be_a_non_negative_integer(seed):
     with pytest.raises(ValueError, match="seed"):
         PymunkWorld(load_world("open-arena"), seed=seed)
+
+
+# ----------------------------------------------------------------------------- issue 21: contact episodes
+
+def jitter_against_wall(seed=0, pause=0.0):
+    """Drive into the east wall, then alternate 0.128 s towards it and 0.128 s away (a robot jittering against a
+    jamb); ``pause`` s away from the wall in the middle. Returns the world after it."""
+    sim = PymunkWorld(box_arena(), seed=seed)
+    sim.place((0.6 - 0.005 - KHEPERA.radius - 0.01, 0.3, 0.0))
+    for _ in range(4):
+        sim.step([0.1, 0.1])
+    for k in range(20):
+        sim.step([0.05, 0.05] if k % 2 == 0 else [-0.05, -0.05])
+    if pause:
+        for _ in range(round(pause / 0.128)):
+            sim.step([-0.05, -0.05])
+        for _ in range(8):
+            sim.step([0.1, 0.1])
+    return sim
+
+
+def test_jitter_against_a_wall_is_one_collision_with_its_contact_time():
+    sim = jitter_against_wall()
+    assert sim.collisions == 1
+    assert 0.1 < sim.contact_s <= sim.t
+
+
+def test_contacts_apart_by_more_than_half_a_second_are_two_collisions():
+    sim = jitter_against_wall(pause=1.5)
+    assert sim.collisions == 2
+
+
+def test_an_event_waits_until_the_robot_is_clear_of_its_shapes():
+    """A door that closes on the robot (a box appearing where the robot stands at 0.1 s) appears only once the
+    robot has driven out of it, so it never counts as a collision."""
+    world = box_arena(events=[{"at_s": 0.1, "add": [{"type": "box", "center": [0.3, 0.3], "size": [0.02, 0.2]}]}])
+    sim = PymunkWorld(world, seed=0)
+    sim.place((0.3, 0.3, 0.0))
+    for _ in range(3):
+        sim.step([0.0, 0.0])
+    assert sim._pending and sim.collisions == 0  # still waiting: the robot stands in the box
+    for _ in range(12):
+        sim.step([0.12, 0.12])
+    assert not sim._pending and sim.collisions == 0 and sim.pose[0] > 0.3 + 0.01 + KHEPERA.radius

@@ -101,13 +101,24 @@ class FieldParams:
                                                              "remembered obstacle"})
     commit: bool = field(default=True, metadata={"help": "form=extended: keep to one side of an obstacle until "
                                                          "the way to the target is open"})
+    direct: bool = field(default=True, metadata={"help": "form=extended: while the way to the target is open and no "
+                                                         "mover is near, reach for it (the target winner s, Eq. 4.5)"})
+    near: float = field(default=0.08, metadata={"help": "form=extended: m a direction must be open for the body alone "
+                                                         "when none is open, with the clearance, as far as the target"})
+    mover_near: float = field(default=0.15, metadata={"help": "form=extended, direct: m from the body within which "
+                                                              "a declared mover makes the fields weigh every obstacle"})
+    guard_s: float = field(default=0.5, metadata={"help": "form=extended: s of travel to the nearest remembered "
+                                                          "obstacle in the way of the wheels' motion (0: no guard)"})
+    guard_clearance: float = field(default=0.01, metadata={"help": "form=extended: m beside the body within which a "
+                                                                  "remembered obstacle is in the way of the wheels"})
 
     def __post_init__(self):
         for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if self.clearance < 0:
-            raise ValueError(f"clearance must be >= 0, got {self.clearance}")
+        if self.clearance < 0 or self.guard_s < 0 or self.mover_near < 0:
+            raise ValueError(f"clearance, guard_s and mover_near must be >= 0, got {self.clearance}, {self.guard_s}, "
+                             f"{self.mover_near}")
         if self.memory_points < 1:
             raise ValueError(f"memory_points must be >= 1, got {self.memory_points}")
 
@@ -203,18 +214,21 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
 
         def per_neuron(u, v):  # on the points that count only (most slots are empty or beyond the target)
             return (body_field(ekm.w, u, v, radius, p, cfg),
-                    mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=p.clearance))
+                    mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=p.clearance),
+                    mem.blocked_along(directions, jnp.minimum(obs.target[1], p.near), u, v, radius=radius,
+                                      clearance=0.0))
 
-        b, blocked = mem.over_packed(per_neuron, u_obs, valid)
+        b, blocked, blocked_near = mem.over_packed(per_neuron, u_obs, valid)
+        blocked = jnp.stack([blocked, blocked_near])
     else:
         u_obs, valid = obstacle_inputs(obs.ir, angles)
         winners = jax.vmap(lambda u: winner(ekm.w, u, cfg))(u_obs)
         b = obstacle_field(ekm.w, winners, valid, p, cfg)
-        blocked = jnp.zeros(ekm.w.shape[0] + 1, bool)
+        blocked = jnp.zeros((2, ekm.w.shape[0] + 1), bool)
     return state, Tick(s, g_a, b, g_a - b, u_obs, valid), blocked
 
 
-def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMConfig):
+def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMConfig, direct=True, blocked_near=None):
     """The winner when the robot commits to one side of an obstacle (``form=extended``; see the module
     docstring). ``blocked`` ``(N² + 1,)``: which neurons' directions and (last) the target's a remembered
     obstacle blocks nearer than the target (:func:`memory.blocked_along`). Returns ``(k, side)``.
@@ -233,9 +247,16 @@ def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMCon
     swept = jnp.mod(side * (w[:, 0] - target[0]), 2.0 * jnp.pi) / jnp.pi  # 0 … 2 half-turns, one way round
     dd = relative(w[winner(w, target, cfg)], w, cfg)[:, 1]
     g = jnp.exp(-(p.gamma_alpha * swept**2 + p.gamma_d * dd**2) / p.sigma_a**2)
-    open_ = ~blocked[:-1]
+    # Open, and going somewhere: a neuron whose displacement is a small fraction of the way to the target is
+    # open in every direction and would stall the robot (the lattice's centre neurons, |d_i| of millimetres).
+    going = jnp.abs(w[:, 1]) >= jnp.minimum(0.25 * target[1], 0.02)
+    # Open as far as the target, or — where nothing is (a corridor hardly wider than the robot: every direction
+    # passes within the clearance of a wall before the target) — for the body alone as far as ``near``.
+    open_far = ~blocked[:-1] & going
+    open_ = jnp.where(jnp.any(open_far), open_far, ~blocked_near & going)
     k_side = jnp.where(jnp.any(open_), jnp.argmax(jnp.where(open_, g - b, -jnp.inf)), k)
-    return jnp.where(side != 0, k_side, k), side
+    k_open = jnp.where(direct, winner(w, target, cfg), k) if p.direct else k
+    return jnp.where(side != 0, k_side, k_open), side
 
 
 @partial(jax.jit, static_argnames=("cfg", "p", "radius", "range_m"))
@@ -245,10 +266,37 @@ def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p:
     state, f, blocked = fields(state, ekm, obs, angles, p, cfg, radius=radius, range_m=range_m)
     k = jnp.argmax(f.a)
     if p.form == "extended" and p.commit:
-        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked, p, cfg)
+        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked[0], p, cfg,
+                                   direct=~movers_near(obs, radius, p.mover_near), blocked_near=blocked[1, :-1])
         state = state._replace(side=side)
     u = jnp.where(k == f.s, obs.target, ekm.w[k])  # Eq. 5.5: M_k u_p only for k = s, else M_k w_k
-    return state._replace(s=f.s.astype(jnp.int32), k=k.astype(jnp.int32)), indirect.command(ekm, u, k, cfg)
+    c = indirect.command(ekm, u, k, cfg)
+    if p.form == "extended" and p.guard_s > 0:
+        u_still, still = mem.egocentric(state.memory, obs.pose, radius=radius)
+        c = guard(c, u_still, still & ~mem.near_movers(state.memory.points, obs.markers), radius, p)
+    return state._replace(s=f.s.astype(jnp.int32), k=k.astype(jnp.int32)), c
+
+
+def movers_near(obs: Observation, radius: float, gap: float):
+    """Whether a declared mover (``obs.markers``) is within ``gap`` (m, surface to surface) of the robot."""
+    markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
+    d = jnp.hypot(markers[:, 0] - obs.pose[0], markers[:, 1] - obs.pose[1]) - markers[:, 4] - radius
+    return jnp.any(d < gap)
+
+
+def guard(c, u_obs, valid, radius: float, p: FieldParams):
+    """The wheel command ``c`` ``(2,)`` with its forward (or backward) speed limited so that the robot needs at
+    least ``guard_s`` to reach the nearest remembered obstacle in the body-wide cone straight ahead (behind,
+    when it reverses); its turn rate is kept. The fields choose a *displacement*, but the wheels reach it
+    along an arc that leaves along the current heading: this keeps that first stretch clear."""
+    v, turn = 0.5 * (c[0] + c[1]), 0.5 * (c[1] - c[0])
+    heading = jnp.where(v >= 0, 0.0, jnp.pi)
+    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=p.guard_clearance)
+    ahead = valid & (jnp.abs(wrap_near(heading - u_obs[:, 0])) < half)
+    free = jnp.min(jnp.where(ahead, u_obs[:, 1], jnp.inf))
+    limit = jnp.maximum(free - 0.5 * p.clearance, 0.0) / p.guard_s
+    slowed = jnp.sign(v) * limit
+    return jnp.where(jnp.abs(v) > limit, jnp.stack([slowed - turn, slowed + turn]), c)
 
 
 def build(params: FieldParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPERA, spec: str = "fields") -> Controller:

@@ -172,3 +172,23 @@ def blocked_along(directions, reach, u_obs, valid, *, radius: float, clearance: 
     half = cone_half_width(u_obs[:, 1], radius=radius, clearance=clearance)
     off = jnp.abs(wrap_near(directions[:, None] - u_obs[None, :, 0]))
     return jnp.any(valid[None, :] & (u_obs[None, :, 1] < reach) & (off < half[None, :]), axis=1)
+
+
+#: m beyond a declared mover's radius within which an IR return is bound to the mover's marker.
+BIND_MARGIN = 0.01
+
+
+def near_movers(points, markers, margin: float = BIND_MARGIN):
+    """Which world ``points`` ``(K, 2)`` lie within a declared mover's radius + ``margin`` of one of the ``markers``
+    ``(k, 5)`` (x, y, vx, vy, radius): what the IR saw of a mover, not of a still obstacle."""
+    markers = jnp.asarray(markers, jnp.float32).reshape(-1, 5)
+    gap = _distance(points[:, None, 0], points[:, None, 1], markers[None, :, 0], markers[None, :, 1])
+    return jnp.any(gap <= markers[None, :, 4] + margin, axis=1)
+
+
+def off_movers(pose, readings, angles, markers, *, radius: float, margin: float = BIND_MARGIN):
+    """``readings`` ``(m,)`` with those that hit a declared moving obstacle set to ``inf``: a return within the
+    mover's radius + ``margin`` of one of the ``markers`` ``(k, 5)`` (x, y, vx, vy, radius; world frame) is the
+    mover, which its marker already tracks — kept as a still point it would linger where the mover was."""
+    hits, _ = hit_points(pose, readings, angles, radius, jnp)
+    return jnp.where(near_movers(hits, markers, margin), jnp.inf, readings)

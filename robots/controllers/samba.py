@@ -60,12 +60,8 @@ import jax.numpy as jnp
 
 from robots.controllers import actionmaps as am
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, hit_points, sensor_angles, velocity_to_wheels
+from robots.controllers.base import Controller, Observation, sensor_angles, velocity_to_wheels
 from robots.params import KHEPERA, RobotParams
-
-#: m beyond a declared mover's radius within which an IR return is bound to the mover's marker.
-BIND_MARGIN = 0.01
-
 
 @dataclass(frozen=True)
 class SambaParams:
@@ -93,6 +89,8 @@ class SambaParams:
                                                          "neighbours (parabola through their weights)"})
     guard: bool = field(default=True, metadata={"help": "arbiter: slow the straight-ahead motion of a turn to what "
                                                         "the composite map does not inhibit"})
+    closer: bool = field(default=True, metadata={"help": "arbiter: with no positive action, take the collision-free "
+                                                         "action that closes on the task marker fastest"})
     propagation: float = field(default=0.15, metadata={"help": "goto=msa: propagation factor p of Eq. 3.1"})
     passes: int = field(default=8, metadata={"help": "goto=msa: passes of Eq. 3.1"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
@@ -160,10 +158,7 @@ def bind(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     pose = jnp.asarray(obs.pose, jnp.float32)
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
     ir = jnp.asarray(obs.ir, jnp.float32)
-    hits, _ = hit_points(pose, ir, angles, robot.radius, jnp)
-    on_mover = jnp.any(jnp.linalg.norm(hits[:, None, :] - markers[None, :, :2], axis=-1)
-                       <= markers[None, :, 4] + BIND_MARGIN, axis=1)
-    readings = jnp.where(on_mover, jnp.inf, ir)
+    readings = mem.off_movers(pose, ir, angles, markers, radius=robot.radius)
     memory = mem.update(state.memory, pose, readings, angles, obs.t, radius=robot.radius, range_m=sensors.range_m,
                         merge=p.merge, forget_after=p.memory_s)
     pts = _to_robot(memory.points - pose[:2], pose[2])
@@ -237,6 +232,27 @@ def collision_times(objects, valid, n_still: int, grow: float, grid: am.Velocity
     return jnp.minimum(still, movers)
 
 
+def closer_when_stuck(i, j, go, times, obs: Observation, p: SambaParams, grid: am.VelocityGrid):
+    """When no action weighs above zero (``go`` False), the action free of collision for ``avoid_ttc`` that closes
+    on the task marker fastest, if one closes on it at all: Samba never stands still while an action that hits
+    nothing brings it closer. (With a moving goal the Goto map gives only the actions that intercept it weight
+    (Riekki Fig. 23); when an obstacle inhibits those, nothing positive is left, and a robot standing beside a
+    post watched its target leave.) Closing speed: the action's velocity along the direction to the marker,
+    less the marker's own speed away; a fixed checkpoint keeps the Goto map's speed limit (d / ``brake_s``), so
+    at the goal, where no speed is left, the robot still stops. Returns ``(i, j, go)``."""
+    alpha = obs.target[0]
+    vel = _to_robot(jnp.asarray(obs.target_velocity, jnp.float32), obs.pose[2])
+    away = vel[0] * jnp.cos(alpha) + vel[1] * jnp.sin(alpha)
+    angles, speeds = jnp.asarray(grid.angles()), jnp.asarray(grid.speed_values())
+    closing = speeds[None, :] * jnp.cos(angles[:, None] - alpha) - away  # (n_dir, n_speed)
+    moving = jnp.asarray(obs.final) & (jnp.sum(vel * vel) > 0)
+    slow_enough = speeds[None, :] <= jnp.where(moving, jnp.inf, obs.target[1] / p.brake_s)  # the Goto map's own limit
+    score = jnp.where((times > p.avoid_ttc) & (closing > 1e-3) & slow_enough, closing, -jnp.inf)
+    k = jnp.argmax(score)
+    use = ~go & jnp.isfinite(score.reshape(-1)[k])
+    return jnp.where(use, k // score.shape[1], i), jnp.where(use, k % score.shape[1], j), go | use
+
+
 def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams = KHEPERA) -> Tick:
     """Samba's maps and choice for one tick (the module docstring's steps 1–6); pure, so a recorded
     ``(state, obs)`` gives the very maps the run used (:mod:`evaluation.actionmap_plot`)."""
@@ -248,9 +264,12 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     composite = am.mav(goto, avoid)
     theta = jnp.asarray(obs.pose[2], jnp.float32)
     i, j, go = arbiter(composite, state.heading, theta, p, grid)
+    positive = go
+    if p.closer:
+        i, j, go = closer_when_stuck(i, j, go, times, obs, p, grid)
     direction = jnp.asarray(grid.angles())[i]
     if p.refine:
-        direction = direction + refine(composite, i, j) * grid.step_angle
+        direction = direction + jnp.where(positive, refine(composite, i, j), 0.0) * grid.step_angle
     speed = jnp.asarray(grid.speed_values())[j]
     heading = jnp.where(go, am.wrap(theta + direction), state.heading)
     if p.guard:
