@@ -1,4 +1,5 @@
-"""The picture of ``ekm compare --plot``: success rates with their 95 % intervals, and one path per cell.
+"""The picture of ``ekm compare --plot``: success rates with their 95 % intervals, and one path per cell
+(:func:`comparison_figure`; with generated worlds, by family, :func:`family_figure`).
 
 Top: for each world a group of bars, one per architecture, the bar the success rate and the whisker its
 Wilson interval. Below: a grid — architectures down, worlds across — each cell the world to scale with
@@ -52,6 +53,46 @@ def comparison_figure(rows, records, worlds, labels) -> Figure:
     return fig
 
 
+def family_figure(families, records, labels) -> Figure:
+    """The figure of a comparison over generated worlds (``ekm compare --suite``): for each family a group of
+    bars, one per architecture, the success rate over its worlds with the 95 % Wilson interval; below, one
+    world of each family (the first, by seed) with each architecture's path. ``families``: the rows of
+    :func:`evaluation.compare.by_family`."""
+    from robots.worldfile import load_world
+
+    names = [f for f in dict.fromkeys(r["family"] for r in families) if f != "all"]
+    n_f, n_a = len(names), len(labels)
+    fig = Figure(figsize=(max(8.0, 2.2 * n_f), 3.4 + 1.9 * n_a), layout="constrained")
+    grid = fig.add_gridspec(1 + n_a, n_f, height_ratios=[1.7] + [1.0] * n_a)
+    bars = fig.add_subplot(grid[0, :])
+    width = 0.8 / max(1, n_a)
+    for j, label in enumerate(labels):
+        rows = [next(r for r in families if r["family"] == f and r["architecture"] == label) for f in names]
+        xs = [i - 0.4 + width * (j + 0.5) for i in range(n_f)]
+        ys = [r["success_rate"] or 0.0 for r in rows]
+        err = [[y - r["success_ci95"][0] for y, r in zip(ys, rows)], [r["success_ci95"][1] - y for y, r in zip(ys, rows)]]
+        bars.bar(xs, ys, width * 0.9, color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2,
+                 error_kw={"linewidth": 0.8})
+    worlds = {f: next(r["worlds"] for r in families if r["family"] == f) for f in names}
+    bars.set_xticks(range(n_f), [f"{f}\n({worlds[f]} worlds)" for f in names], fontsize=8)
+    bars.set(ylim=(0, 1.05), ylabel="success rate",
+             title="generated worlds: reached the goal without a collision (95 % Wilson intervals)")
+    bars.legend(fontsize=7, ncols=min(n_a, 4), loc="upper center", bbox_to_anchor=(0.5, -0.3), frameon=False)
+    bars.grid(axis="y", alpha=0.3)
+    for i, family in enumerate(names):
+        given = min((r["given"] for r in records if r.get("family") == family), key=lambda g: int(g.split(":")[1]))
+        world = load_world(given)
+        for j, label in enumerate(labels):
+            ax = fig.add_subplot(grid[1 + j, i])
+            _draw_cell(ax, world, next((r for r in records if r["label"] == label and r["given"] == given
+                                        and "path" in r), None))
+            if i == 0:
+                ax.set_ylabel(label, fontsize=7)
+            if j == 0:
+                ax.set_title(given, fontsize=8)
+    return fig
+
+
 def _draw_cell(ax, world, record) -> None:
     w, h = world.size
     for wall in world.border + world.walls:
@@ -67,7 +108,7 @@ def _draw_cell(ax, world, record) -> None:
         draw_shape(ax, mover.at(0.0), STYLE["moving"])
     gx, gy = world.goal_at(0.0)
     ax.plot([gx], [gy], "*", color="tab:green", ms=7)
-    if record is not None:
+    if record is not None and "path" in record:
         path = np.asarray(record["path"])
         ax.plot(path[:, 0], path[:, 1], "-", color="tab:blue", lw=0.9)
         marker = ("o", "tab:green") if record["reached"] else (("s", "darkorange") if record["trapped"] else ("x", "red"))

@@ -17,6 +17,10 @@ clearance**:
    segment reaches while keeping ``min(margin, least slack of the path in between) − tolerance``
    (:func:`segment_slack`), the goal last.
 
+4. a narrow stretch of the path — slack below ``margin``, a doorway or corridor less than about 11 cm
+   wide — gets a checkpoint ``LEAD`` before and after it (:func:`narrow_ends`), and step 3 pulls each piece
+   between those taut on its own: the robot lines up with the passage before it enters.
+
 So consecutive checkpoints see each other with ``margin`` to spare where the path had it, and with the
 path's own slack through a narrow passage. The route of cells is the thesis's (slippery cells and the
 search of :mod:`planner.search`); ``checkpoints="thesis"`` in :func:`planner.plan` keeps the greedy rule.
@@ -45,6 +49,9 @@ TOLERANCE = 0.003
 
 #: Spacing (m) of the points at which a leg's slack is measured.
 STEP = 0.002
+
+#: Distance (m) along the path before and after a narrow stretch at which a checkpoint lines the robot up.
+LEAD = 0.06
 
 
 def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
@@ -232,6 +239,37 @@ def visible_checkpoints(W: np.ndarray, labels: np.ndarray, route: Sequence[int],
     if found is None:
         return None
     pts, s, centres, cell_slack = found
-    corners = taut(pts, s, obstacles, margin, cells=(centres, cell_slack))
+    anchors = [0, *narrow_ends(pts, s, margin), len(pts) - 1]
+    pieces = [taut(pts[a:b + 1], s[a:b + 1], obstacles, margin, cells=(centres, cell_slack))
+              for a, b in zip(anchors[:-1], anchors[1:])]
+    corners = np.vstack(pieces)
     corners[-1] = np.asarray(goal, dtype=float)[:2]
     return corners
+
+
+def narrow_ends(points: np.ndarray, slacks: np.ndarray, margin: float = MARGIN, lead: float = LEAD) -> list[int]:
+    """Indices of the path points ``lead`` metres (along the path) before and after each narrow stretch — path
+    points whose slack is below ``margin``: a doorway or corridor less than about 11 cm wide. They become
+    checkpoints, so the robot lines up with a narrow passage before it enters and leaves it straight, instead
+    of crossing it on the slant of a long leg (step 4 of the module docstring)."""
+    narrow = slacks < margin
+    narrow[0] = narrow[-1] = False  # the start and goal are where they are
+    along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    ends = []
+    i, n = 1, len(points)
+    while i < n - 1:
+        if not narrow[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n - 1 and narrow[j + 1]:
+            j += 1
+        before = int(np.searchsorted(along, along[i] - lead, side="right")) - 1
+        after = int(np.searchsorted(along, along[j] + lead))
+        before, after = max(before, 0), min(after, n - 1)
+        if before > (ends[-1] if ends else 0):
+            ends.append(before)
+        if after < n - 1 and after > (ends[-1] if ends else 0):
+            ends.append(after)
+        i = max(j + 1, after)
+    return ends

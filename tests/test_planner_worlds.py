@@ -45,7 +45,7 @@ def test_thesis_checkpoints_lie_in_free_space_on_shared_boundaries(name, method)
 
 @pytest.mark.parametrize("method", METHODS)
 def test_three_rooms_route_passes_both_doorways(method):
-    p = plan(load_world("three-rooms"), method=method)
+    p = plan(load_world("three-rooms"), method=method, checkpoints="thesis")
     assert passes_doorway(p, 0.4, 0.24, 0.36)
     assert passes_doorway(p, 0.8, 0.10, 0.22)
 

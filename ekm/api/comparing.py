@@ -46,10 +46,12 @@ class Table(Result):
                 "runs": len(self.records), "workers": self.workers, "config": asdict(self.config), **provenance()}
 
     def plot(self):
-        """Success rates with their 95 % intervals, and one path per architecture and world; returns the
-        matplotlib Figure."""
-        from evaluation.compare_plot import comparison_figure
+        """Success rates with their 95 % intervals, and one path per architecture and world — by family, with
+        one world of each, when the comparison has generated worlds; returns the matplotlib Figure."""
+        from evaluation.compare_plot import comparison_figure, family_figure
 
+        if self.families:
+            return family_figure(list(self.families), list(self.records), list(self.labels))
         return comparison_figure(list(self.rows), list(self.records), list(self.worlds), list(self.labels))
 
     def save_plot(self, path) -> Path:
