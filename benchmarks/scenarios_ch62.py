@@ -10,6 +10,9 @@ The letters per seed show which run did what (R reached, T trapped, C, L, N as a
     python benchmarks/scenarios_ch62.py --architectures fusion,fields:form=thesis --worlds extended-obstacle,concave-obstacle --recover
     python benchmarks/scenarios_ch62.py --map other.npz               # another trained map for every architecture
 
+The runs are set up as the thesis's were: its greedy checkpoints (ch. 3.2.3) and no recovery, unless
+``--checkpoints visible`` and ``--recover`` say otherwise (``ekm compare`` runs the package's defaults).
+
 Runs spread over worker processes (``--workers``, default the machine's cores); each run is a pure
 function of (world, architecture, seed), so the table does not depend on the number of workers.
 """
@@ -35,7 +38,7 @@ _MAPS: dict = {}
 
 def one(job):
     """One run (in a worker process): its outcome record."""
-    world, architecture, seed, recover, time_limit, trap_after, map_path = job
+    world, architecture, seed, recover, time_limit, trap_after, map_path, checkpoints = job
     from ekm.mapfile import load_maps
     from evaluation.scenario import ScenarioConfig, run_architecture
     from robots.controllers.spec import parse_architecture
@@ -44,7 +47,8 @@ def one(job):
     if map_path and map_path not in _MAPS:
         _MAPS[map_path] = load_maps(map_path)
     rec = run_architecture(load_world(world), parse_architecture(architecture), _MAPS.get(map_path), seed=seed,
-                           config=ScenarioConfig(recover=recover, time_limit=time_limit, trap_after=trap_after), source=map_path or "")
+                           config=ScenarioConfig(recover=recover, time_limit=time_limit, trap_after=trap_after,
+                                                 checkpoints=checkpoints), source=map_path or "")
     return {**rec.outcome(), "label": architecture, "given": world}  # "given": the name or path as typed
 
 
@@ -72,6 +76,8 @@ def main(argv=None) -> int:
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0 .. N-1 (default 10)")
     parser.add_argument("--first-seed", type=int, default=0)
     parser.add_argument("--recover", action="store_true", help="cognizant-failure recovery on")
+    parser.add_argument("--checkpoints", choices=("thesis", "visible"), default="thesis",
+                        help="the planner's checkpoint rule (default thesis: ch. 3.2.3, as the thesis's runs)")
     parser.add_argument("--time-limit", type=float, default=120.0, help="simulated seconds per run (default 120)")
     parser.add_argument("--trap-after", type=float, default=20.0,
                         help="seconds without progress before the trap monitor fires (default 20)")
@@ -92,7 +98,7 @@ def main(argv=None) -> int:
     except InputError as exc:
         parser.error(str(exc))
     seeds = range(args.first_seed, args.first_seed + args.seeds)
-    jobs = [(w, a, s, args.recover, args.time_limit, args.trap_after, args.map)
+    jobs = [(w, a, s, args.recover, args.time_limit, args.trap_after, args.map, args.checkpoints)
             for a in architectures for w in worlds for s in seeds]
     t0 = time.perf_counter()
     with ProcessPoolExecutor(args.workers, mp_context=mp.get_context("spawn")) as pool:

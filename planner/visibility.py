@@ -249,27 +249,32 @@ def visible_checkpoints(W: np.ndarray, labels: np.ndarray, route: Sequence[int],
 
 def narrow_ends(points: np.ndarray, slacks: np.ndarray, margin: float = MARGIN, lead: float = LEAD) -> list[int]:
     """Indices of the path points ``lead`` metres (along the path) before and after each narrow stretch — path
-    points whose slack is below ``margin``: a doorway or corridor less than about 11 cm wide. They become
-    checkpoints, so the robot lines up with a narrow passage before it enters and leaves it straight, instead
-    of crossing it on the slant of a long leg (step 4 of the module docstring)."""
+    points whose slack is below ``margin``: a doorway or corridor less than about 11 cm wide; stretches less
+    than ``2 lead`` apart (a corridor's bends, where the outer corner leaves more room) count as one. They
+    become checkpoints, so the robot lines up with a narrow passage before it enters and leaves it straight,
+    instead of crossing it on the slant of a long leg (step 4 of the module docstring)."""
+    n = len(points)
     narrow = slacks < margin
     narrow[0] = narrow[-1] = False  # the start and goal are where they are
     along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-    ends = []
-    i, n = 1, len(points)
+    runs, i = [], 1
     while i < n - 1:
-        if not narrow[i]:
-            i += 1
-            continue
-        j = i
-        while j + 1 < n - 1 and narrow[j + 1]:
-            j += 1
-        before = int(np.searchsorted(along, along[i] - lead, side="right")) - 1
-        after = int(np.searchsorted(along, along[j] + lead))
-        before, after = max(before, 0), min(after, n - 1)
+        if narrow[i]:
+            j = i
+            while j + 1 < n - 1 and narrow[j + 1]:
+                j += 1
+            if runs and along[i] - along[runs[-1][1]] < 2 * lead:
+                runs[-1] = (runs[-1][0], j)
+            else:
+                runs.append((i, j))
+            i = j
+        i += 1
+    ends = []
+    for i, j in runs:
+        before = max(int(np.searchsorted(along, along[i] - lead, side="right")) - 1, 0)
+        after = min(int(np.searchsorted(along, along[j] + lead)), n - 1)
         if before > (ends[-1] if ends else 0):
             ends.append(before)
         if after < n - 1 and after > (ends[-1] if ends else 0):
             ends.append(after)
-        i = max(j + 1, after)
     return ends

@@ -250,7 +250,8 @@ def test_points_the_ir_saw_on_a_declared_mover_never_join_the_map():
 
 def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it():
     """Three rooms in a row; the robot is placed in the last room, from where the goal is in view: the runner
-    passes the checkpoints in the doorways behind it at the first look (the first tick) and steers for the goal."""
+    passes the checkpoints in the doorways behind it within its first looks (every 0.5 s, three checkpoints
+    ahead at a time) and steers for the goal, 0.16 m away, instead of driving back through the doors."""
     from dataclasses import replace
 
     world = load_world("three-rooms")
@@ -271,4 +272,5 @@ def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it
     finally:
         scenario.plan = original
     assert rec.reached and rec.checkpoints_reached == len(original(world).checkpoints)
-    assert all(t == 0.0 for t, *_ in rec.checkpoint_log[:-1])  # every doorway checkpoint passed at the first look
+    assert all(t <= 1.0 for t, *_ in rec.checkpoint_log[:-1])  # every doorway checkpoint passed at the first looks
+    assert rec.path_m < 0.3
