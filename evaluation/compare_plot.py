@@ -21,35 +21,12 @@ def comparison_figure(rows, records, worlds, labels) -> Figure:
     """The figure for summary ``rows`` (in :func:`evaluation.compare.summarize`'s order) and run ``records``."""
     from robots.worldfile import load_world
 
-    n_w, n_a = len(worlds), len(labels)
-    fig = Figure(figsize=(max(8.0, 2.4 * n_w), 3.2 + 1.9 * n_a), layout="constrained")
-    grid = fig.add_gridspec(1 + n_a, n_w, height_ratios=[1.6] + [1.0] * n_a)
-    bars = fig.add_subplot(grid[0, :])
-    width = 0.8 / max(1, n_a)
-    for j, label in enumerate(labels):
-        xs, ys, lo, hi = [], [], [], []
-        for i in range(n_w):
-            r = rows[j * n_w + i]  # summarize's order: architectures, then worlds
-            xs.append(i - 0.4 + width * (j + 0.5))
-            ys.append(r["success_rate"] or 0.0)
-            lo.append(ys[-1] - r["success_ci95"][0])
-            hi.append(r["success_ci95"][1] - ys[-1])
-        bars.bar(xs, ys, width * 0.9, color=_COLOURS[j % len(_COLOURS)], label=label,
-                 yerr=[lo, hi], capsize=2, error_kw={"linewidth": 0.8})
+    n_w = len(worlds)
+    fig, grid, bars = _layout(n_w, len(labels), width=2.4)
+    _success_bars(bars, labels, n_w, lambda j, i: rows[j * n_w + i])  # summarize's order: architectures, then worlds
     bars.set_xticks(range(n_w), [load_world(w).name for w in worlds], rotation=15, fontsize=8)
-    bars.set(ylim=(0, 1.05), ylabel="success rate", title="reached the goal without a collision (95 % Wilson intervals)")
-    bars.legend(fontsize=7, ncols=min(n_a, 4), loc="upper center", bbox_to_anchor=(0.5, -0.25), frameon=False)
-    bars.grid(axis="y", alpha=0.3)
-    for i, world_name in enumerate(worlds):
-        world = load_world(world_name)
-        for j, label in enumerate(labels):
-            ax = fig.add_subplot(grid[1 + j, i])
-            _draw_cell(ax, world, next((r for r in records if r["label"] == label and r["given"] == world_name
-                                        and "path" in r), None))
-            if i == 0:
-                ax.set_ylabel(label, fontsize=7)
-            if j == 0:
-                ax.set_title(world.name, fontsize=8)
+    bars.set_title("reached the goal without a collision (95 % Wilson intervals)")
+    _path_grid(fig, grid, worlds, labels, records, [load_world(w).name for w in worlds])
     return fig
 
 
@@ -58,29 +35,45 @@ def family_figure(families, records, labels) -> Figure:
     bars, one per architecture, the success rate over its worlds with the 95 % Wilson interval; below, one
     world of each family (the first, by seed) with each architecture's path. ``families``: the rows of
     :func:`evaluation.compare.by_family`."""
-    from robots.worldfile import load_world
-
     names = [f for f in dict.fromkeys(r["family"] for r in families) if f != "all"]
-    n_f, n_a = len(names), len(labels)
-    fig = Figure(figsize=(max(8.0, 2.2 * n_f), 3.4 + 1.9 * n_a), layout="constrained")
-    grid = fig.add_gridspec(1 + n_a, n_f, height_ratios=[1.7] + [1.0] * n_a)
-    bars = fig.add_subplot(grid[0, :])
-    width = 0.8 / max(1, n_a)
+    fig, grid, bars = _layout(len(names), len(labels), width=2.2)
+    row = {(r["family"], r["architecture"]): r for r in families}
+    _success_bars(bars, labels, len(names), lambda j, i: row[(names[i], labels[j])])
+    bars.set_xticks(range(len(names)), [f"{f}\n({row[(f, labels[0])]['worlds']} worlds)" for f in names], fontsize=8)
+    bars.set_title("generated worlds: reached the goal without a collision (95 % Wilson intervals)")
+    first = [min((r["given"] for r in records if r.get("family") == f), key=lambda g: int(g.split(":")[1]))
+             for f in names]
+    _path_grid(fig, grid, first, labels, records, first)
+    return fig
+
+
+def _layout(n_groups: int, n_labels: int, width: float):
+    """A figure with a bar chart across the top and a grid of ``n_labels`` rows × ``n_groups`` maps below."""
+    fig = Figure(figsize=(max(8.0, width * n_groups), 3.3 + 1.9 * n_labels), layout="constrained")
+    grid = fig.add_gridspec(1 + n_labels, n_groups, height_ratios=[1.65] + [1.0] * n_labels)
+    return fig, grid, fig.add_subplot(grid[0, :])
+
+
+def _success_bars(bars, labels, n_groups: int, row) -> None:
+    """For each group i a bar per architecture j: ``row(j, i)``'s success rate with its Wilson interval."""
+    width = 0.8 / max(1, len(labels))
     for j, label in enumerate(labels):
-        rows = [next(r for r in families if r["family"] == f and r["architecture"] == label) for f in names]
-        xs = [i - 0.4 + width * (j + 0.5) for i in range(n_f)]
+        rows = [row(j, i) for i in range(n_groups)]
         ys = [r["success_rate"] or 0.0 for r in rows]
         err = [[y - r["success_ci95"][0] for y, r in zip(ys, rows)], [r["success_ci95"][1] - y for y, r in zip(ys, rows)]]
-        bars.bar(xs, ys, width * 0.9, color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2,
-                 error_kw={"linewidth": 0.8})
-    worlds = {f: next(r["worlds"] for r in families if r["family"] == f) for f in names}
-    bars.set_xticks(range(n_f), [f"{f}\n({worlds[f]} worlds)" for f in names], fontsize=8)
-    bars.set(ylim=(0, 1.05), ylabel="success rate",
-             title="generated worlds: reached the goal without a collision (95 % Wilson intervals)")
-    bars.legend(fontsize=7, ncols=min(n_a, 4), loc="upper center", bbox_to_anchor=(0.5, -0.3), frameon=False)
+        bars.bar([i - 0.4 + width * (j + 0.5) for i in range(n_groups)], ys, width * 0.9,
+                 color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2, error_kw={"linewidth": 0.8})
+    bars.set(ylim=(0, 1.05), ylabel="success rate")
+    bars.legend(fontsize=7, ncols=min(len(labels), 4), loc="upper center", bbox_to_anchor=(0.5, -0.28), frameon=False)
     bars.grid(axis="y", alpha=0.3)
-    for i, family in enumerate(names):
-        given = min((r["given"] for r in records if r.get("family") == family), key=lambda g: int(g.split(":")[1]))
+
+
+def _path_grid(fig, grid, givens, labels, records, titles) -> None:
+    """Each world ``givens[i]`` (as the jobs spelt it) across, each architecture down, with the path its first
+    trial left in ``records``."""
+    from robots.worldfile import load_world
+
+    for i, (given, title) in enumerate(zip(givens, titles)):
         world = load_world(given)
         for j, label in enumerate(labels):
             ax = fig.add_subplot(grid[1 + j, i])
@@ -89,8 +82,7 @@ def family_figure(families, records, labels) -> Figure:
             if i == 0:
                 ax.set_ylabel(label, fontsize=7)
             if j == 0:
-                ax.set_title(given, fontsize=8)
-    return fig
+                ax.set_title(title, fontsize=8)
 
 
 def _draw_cell(ax, world, record) -> None:

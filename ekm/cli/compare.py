@@ -71,14 +71,18 @@ def run(args) -> None:
 def print_families(rows) -> None:
     """The comparison by family of generated worlds: success with its 95 % interval over all their runs."""
     head = ("family", "architecture", "worlds", "success", "95 % interval", "time s", "trapped", "collisions", "failed")
-    lines = [head]
-    for r in rows:
-        lo, hi = r["success_ci95"]
-        ok = round(r["success_rate"] * r["trials"])
-        lines.append((r["family"], r["architecture"], str(r["worlds"]), f"{ok}/{r['trials']}", f"{lo:.2f}-{hi:.2f}",
-                      "" if r["mean_time_s"] is None else f"{r['mean_time_s']:.1f}", str(r["trapped"]),
-                      str(r["collisions"]), str(r["failed"])))
-    _print(lines)
+    _print([head] + [(r["family"], r["architecture"], str(r["worlds"]), *_success(r), _mean(r["mean_time_s"], 1),
+                      str(r["trapped"]), str(r["collisions"]), str(r["failed"])) for r in rows])
+
+
+def _success(r) -> tuple[str, str]:
+    """``("k/n", "lo-hi")`` of a summary row: runs that reached the goal and the 95 % interval."""
+    lo, hi = r["success_ci95"]
+    return f"{round(r['success_rate'] * r['trials'])}/{r['trials']}", f"{lo:.2f}-{hi:.2f}"
+
+
+def _mean(value, digits: int) -> str:
+    return "" if value is None else f"{value:.{digits}f}"
 
 
 def _print(lines) -> None:
@@ -90,12 +94,5 @@ def _print(lines) -> None:
 def print_table(rows) -> None:
     """The comparison as a table: success with its 95 % interval, mean time and path of the successes."""
     head = ("architecture", "world", "success", "95 % interval", "time s", "path m", "trapped", "collisions", "runs")
-    lines = [head]
-    for r in rows:
-        lo, hi = r["success_ci95"]
-        ok = round(r["success_rate"] * r["trials"])
-        lines.append((r["architecture"], r["world"], f"{ok}/{r['trials']}", f"{lo:.2f}-{hi:.2f}",
-                      "" if r["mean_time_s"] is None else f"{r['mean_time_s']:.1f}",
-                      "" if r["mean_path_m"] is None else f"{r['mean_path_m']:.2f}",
-                      str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]))
-    _print(lines)
+    _print([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1), _mean(r["mean_path_m"], 2),
+                      str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]) for r in rows])
