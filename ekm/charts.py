@@ -51,7 +51,7 @@ def model_input(u, w, cfg: EKMConfig):
     """ũ of input ``u`` = (α, d) for the linear model of each neuron weight in ``w`` ``(..., 2)``, in
     ``cfg.chart``; the result broadcasts against ``w``. The polar chart's depends on each weight and has the
     shape of ``w``; the signed chart's does not and keeps the shape of ``u`` — broadcast to every neuron,
-    XLA wrote it out in a kernel of its own every training step (docs/speed.md, fourth round)."""
+    XLA would write it out in a kernel of its own every training step."""
     if cfg.chart == "polar":
         return polar(u, w, cfg)
     return signed(u, cfg)

@@ -10,7 +10,7 @@ CHARTS = ("signed", "polar")  # coordinates of the indirect maps' linear model (
 
 @dataclass(frozen=True)
 class EKMConfig:
-    """Shape and winner-search parameters of an N×N Extended Kohonen Map (thesis ch. 4, DESIGN §3).
+    """Shape and winner-search parameters of an N×N Extended Kohonen Map (thesis ch. 4; docs/design.md §3).
 
     The sensory input is u_p = (α, d): direction (rad, wrapped to (-π, π]) and distance (m) of the target
     in the robot's frame. Inside the map both components are measured in units that make them of order
@@ -36,7 +36,7 @@ class EKMConfig:
     # Coordinates of the target for the linear model c_p = M ũ_p (Eq. 4.1/4.5/4.9), ``ekm.charts``:
     # "signed" — the thesis's (α, d) ahead, measured from the robot's back with d negative behind, so the
     # map reverses straight onto targets behind; "polar" — (α, d) as the thesis writes it, which reaches
-    # them by dithering and turning round (seed 0: T(25) 10.6 against 7.8 steps/m, E 2.1 against 1.3 mm).
+    # them by dithering and turning round, more slowly and less precisely.
     chart: str = "signed"
 
     def __post_init__(self):

@@ -1,4 +1,4 @@
-"""Writing output files safely: a file is either complete or not there (DESIGN §3, §6)."""
+"""Writing output files safely: a file is either complete or not there (docs/design.md §3, §6)."""
 
 from __future__ import annotations
 

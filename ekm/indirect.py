@@ -64,8 +64,8 @@ def apply(M, u):
     """M u for control matrices ``M`` ``(..., 2, 2)`` and inputs ``u`` ``(..., 2)``: the command of Eq. 4.1.
 
     Written out as two products and a sum: as a ``dot`` (``M @ u``, ``einsum``) XLA's CPU back-end runs it as
-    a batched 2×2 matrix product, a kernel of its own that cost more than the arithmetic around it
-    (docs/speed.md, fourth round). The sum rounds differently from the dot in the last bit.
+    a batched 2×2 matrix product, a kernel of its own that costs more than the arithmetic around it. The
+    sum rounds differently from the dot in the last bit.
     """
     return M[..., 0] * u[..., None, 0] + M[..., 1] * u[..., None, 1]
 

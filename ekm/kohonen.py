@@ -24,9 +24,9 @@ def wrap_once(a):
     at most one turn — bit for bit, without the ``mod``.
 
     ``mod(x, 2π)`` of x = π - a ∈ [-π, 3π] is x, x - 2π or x + 2π, and each is what ``mod`` returns
-    (x - 2π is exact for x ≥ 2π; x + 2π is the same rounded sum ``mod`` adds). XLA's CPU ``mod`` is many
-    times slower than this select (docs/speed.md, third round). The turn is selected rather than added
-    as a constant so that XLA cannot fold it into π - a (that would round differently).
+    (x - 2π is exact for x ≥ 2π; x + 2π is the same rounded sum ``mod`` adds). XLA's CPU ``mod`` is much
+    slower than this select. The turn is selected rather than added as a constant so that XLA cannot
+    fold it into π - a (that would round differently).
     """
     x = jnp.pi - a
     turn = 2.0 * jnp.pi
@@ -36,7 +36,7 @@ def wrap_once(a):
 def wrap_near(a):
     """``a`` wrapped to [-π, π] by rounding — equal to :func:`wrap` except that -π may stay -π. For angle
     differences that are then squared or taken in absolute value, where that sign does not matter; on the
-    CPU it costs a quarter of :func:`wrap`'s ``mod`` (the neural fields evaluate it K × N² times a tick)."""
+    CPU it is cheaper than :func:`wrap`'s ``mod`` (the neural fields evaluate it K × N² times a tick)."""
     return a - 2.0 * jnp.pi * jnp.round(a / (2.0 * jnp.pi))
 
 
@@ -61,13 +61,11 @@ def forward_prior(cfg: EKMConfig):
     Scaled by ``cfg.forward_init`` it is the initial M_i of every neuron (and, through c_i = M_fwd w̃_i,
     the initial outputs of a direct map). It only breaks the forward/backward symmetry of the task — a
     forward and a backward arc reach the same displacement — and gives the untrained robot no way to
-    reach a target: it cannot turn (untrained E ≈ 0.2 m in the ch. 6.1 test). In the signed chart, whose
-    coordinates already say which way to drive, it hardly matters (``forward_init`` = 0: E = 1.3, 1.5 mm,
-    T(25) = 7.89, 7.93 for seeds 0, 1, against 1.3, 1.2 mm and 7.82, 7.88). In the polar chart a map with
-    no preferred direction of travel (M_i = 0) settled on either, trial by trial, and learned worse
-    (E = 3.0, 3.9, 4.8 mm, seeds 0–2, against 2.1, 1.7, 1.7 mm). A prior that also steered
-    (the linearised one-step inverse) was rejected: untrained, it already stopped within 2.7 mm of the
-    targets, so it would be a hand-made controller, not a start.
+    reach a target: it cannot turn. In the signed chart, whose coordinates already say which way to
+    drive, it hardly matters (``forward_init`` = 0 learns about as well). In the polar chart a map with
+    no preferred direction of travel (M_i = 0) settled on either, trial by trial, and learned worse. A
+    prior that also steered (the linearised one-step inverse) was rejected: untrained, it already
+    stopped within millimetres of the targets, so it would be a hand-made controller, not a start.
     """
     return jnp.asarray([[0.0, cfg.c_max], [0.0, cfg.c_max]], dtype=jnp.float32)
 
@@ -98,7 +96,7 @@ def relative(u, w, cfg: EKMConfig):
     must lie in [-π, π] (:func:`wrap_once`); inputs and weights always do (map files are checked).
 
     Built from its two components: writing the wrapped angle into a copy of the difference (``.at[].set``)
-    gave the same values through a scatter that cost a tenth of a training step (docs/speed.md)."""
+    gives the same values through a scatter, a costly kernel of its own in every training step."""
     return jnp.stack(_relative_parts(u, w, cfg), axis=-1)
 
 
@@ -119,10 +117,10 @@ def winner(w, u, cfg: EKMConfig):
     than ``a_size`` neurons lie strictly nearer in angle. If it is not, neither is any neuron at least as
     far in angle, and all of those are ruled out. The first one found in A(α) is
     :func:`winner_by_partition`'s winner, ties included, and in training it is usually the first one
-    tried. Ordering all N² angles for A(α) instead (a ``TopK`` kernel) was the largest cost of a
-    training step (docs/speed.md, third round).
+    tried. Ordering all N² angles for A(α) instead (a ``TopK`` kernel) would be the costliest part of a
+    training step.
 
-    The loop ends: each round rules out at least its candidate, and the neuron nearest in angle is in
+    The loop ends: each pass rules out at least its candidate, and the neuron nearest in angle is in
     A(α). It also ends when every neuron left is at D² = ∞ (an overflowing input), where the definition's
     ``argmin`` gives the first neuron, as ``argmin`` of the all-∞ rest does; a NaN input ends it at once.
     """
@@ -134,8 +132,8 @@ def winner(w, u, cfg: EKMConfig):
 
 def _distances(w, u, cfg: EKMConfig):
     """|α - α_i| and D² of Eq. 4.3 for every neuron, in map units, angles wrapped. From the components of
-    :func:`relative`, not its stacked array: XLA then wrote that array out in a kernel of its own, twice a
-    training step (docs/speed.md, fourth round)."""
+    :func:`relative`, not its stacked array: XLA would write that array out in a kernel of its own, twice
+    a training step."""
     dalpha, dd = _relative_parts(u, w, cfg)
     return jnp.abs(dalpha), cfg.gamma_alpha * dalpha ** 2 + cfg.gamma_d * dd ** 2
 
@@ -155,7 +153,7 @@ def _nearest_in_a(dalpha, dist2, a_size: int):
         return k, found(k, jnp.min(left))
 
     # D² of the candidate as the minimum, not gathered at its index: XLA takes it from the argmin's own
-    # reduction, one kernel fewer per check (docs/speed.md, fourth round)
+    # reduction, one kernel fewer per check
     k = jnp.argmin(dist2)
     return jax.lax.while_loop(lambda carry: ~carry[1], rule_out, (k, found(k, jnp.min(dist2))))[0]
 

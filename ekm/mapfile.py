@@ -1,4 +1,4 @@
-"""Save and load trained maps: ``.npz`` without pickle plus JSON metadata (DESIGN §3).
+"""Save and load trained maps: ``.npz`` without pickle plus JSON metadata (docs/design.md §3).
 
 A map file holds the maps of every training trial stacked along a leading axis:
 

@@ -8,10 +8,11 @@ Avoid weights (−1), white for zero — on one scale for the three maps: the Go
 the Avoid map of the obstacle markers after the time-to-collision filter, and their MAV composite, with the
 action the arbiter chose marked (★) and the checkpoint's direction drawn as a dashed ray.
 
-The maps are not recorded during a run — the runner does not know what it runs (DESIGN §5). A run is a pure
-function of (world, architecture, seed), so :func:`record_tick` runs it again with the controller wrapped
-to keep every tick's (state, observation), and :func:`samba.maps <robots.controllers.samba.maps>`, pure,
-recomputes from the one nearest T the very maps that tick used::
+The maps are not recorded during a run — the runner does not know what it runs (docs/design.md §5). A
+run is a pure function of (world, architecture, seed), so :func:`record_tick` runs it again with the
+controller wrapped to keep every tick's (state, observation), and
+:func:`samba.maps <robots.controllers.samba.maps>`, pure, recomputes from the one nearest T the very
+maps that tick used::
 
     rec, moment = record_tick(load_world("three-rooms-static"), parse_architecture("samba"), at=5.0)
     save_run_with_maps(rec, moment, "maps.png")
@@ -75,7 +76,7 @@ def record_tick(world, spec, at: float, seed: int = 0, config: ScenarioConfig = 
         raise InputError(f"--maps-at {at:g}: the run has no control ticks")
     k = int(np.argmin([abs(t - at) for t, _, _ in seen]))
     t, state, obs = seen[k]
-    tick = _jitted_maps()(state, obs, p=controller.params, robot=controller.robot)  # eager: ~300 op compiles
+    tick = _jitted_maps()(state, obs, p=controller.params, robot=controller.robot)  # eagerly it compiles op by op
     return rec, Moment(t, state, obs, tick, controller.params, controller.robot)
 
 

@@ -1,6 +1,6 @@
 """Comparing architectures at scale: every architecture × world × trial through the scenario runner.
 
-A comparison is a bag of independent runs (DESIGN §5, "scale-out"): a run is a pure function of
+A comparison is a bag of independent runs (docs/design.md §5): a run is a pure function of
 (world, architecture, run seed, map), so the runs can go to any :class:`concurrent.futures.Executor` —
 a local process pool, or a Dask ``distributed`` cluster's executor — in any order, on any number of
 workers, and the results are the same. Trial ``i`` of a comparison started with ``seed`` runs with run
@@ -8,7 +8,7 @@ seed ``seed + i`` in every world and for every architecture: the same noise stre
 (common random numbers), so differences between architectures are not differences of luck.
 
 :func:`compare` submits the runs and collects their outcome records; :func:`summarize` turns them into
-the rows of ``ekm compare`` (DESIGN §6) with each success rate's 95 % Wilson interval.
+the rows of ``ekm compare`` (docs/design.md §6) with each success rate's 95 % Wilson interval.
 """
 
 from __future__ import annotations
@@ -139,7 +139,7 @@ def _row(rs: list[dict]) -> dict:
 
 
 def summarize(records: list[dict], worlds, labels) -> list[dict]:
-    """One row per (world, architecture) in the given order — DESIGN §6's ``results``: ``world,
+    """One row per (world, architecture) in the given order — the ``results`` of docs/design.md §6: ``world,
     architecture, trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions, trapped`` (then
     ``contact_s``, ``failed``: runs that could not start, and ``runs_by_trial``, a letter per trial)."""
     rows = []

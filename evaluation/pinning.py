@@ -3,9 +3,8 @@
 A scenario run is one thread of Python (pymunk, the planner, the runner) calling one small jitted step per
 0.128 s tick. Left free, the process moves between CPUs and XLA hands the step's kernels to a pool of
 threads, one per CPU, that sleep between ticks; pinned to one CPU, the step runs on that CPU's caches
-and the pool has one thread. On the 2-core machine of ``docs/speed.md`` that made the controller's call
-25–40 % cheaper and whole runs 10–35 % faster (``python benchmarks/bench_scenarios.py`` against
-``--no-pin``). Outcomes do not depend on it: a run is a pure function of its job.
+and the pool has one thread, so the controller's call is cheaper and whole runs are faster. Outcomes do
+not depend on it: a run is a pure function of its job.
 
 Pin before JAX creates its CPU backend (the first array), so that XLA sizes its thread pool for one CPU;
 training (``ekm train``), which shares trials over CPU devices, is never pinned.

@@ -1,4 +1,4 @@
-"""The scenario runner: one robot, one world, one architecture, one seed (DESIGN §5, §6; thesis ch. 6.2).
+"""The scenario runner: one robot, one world, one architecture, one seed (docs/design.md §5, §6; thesis ch. 6.2).
 
 The imperative shell around a pure controller (:mod:`robots.controllers`): the pymunk world
 (:class:`robots.world.PymunkWorld` — walls, unforeseen, moving and event obstacles, contact, IR, the
@@ -109,7 +109,7 @@ class PlanChange:
 
 @dataclass
 class RunRecord:
-    """Everything a run did: the outcome (DESIGN §6) and the traces the plots draw."""
+    """Everything a run did: the outcome (docs/design.md §6) and the traces the plots draw."""
 
     world: World
     architecture: str
@@ -339,9 +339,8 @@ def _sees_next(position, current, index: int, config: ScenarioConfig, sight) -> 
 
 def _in_one_loop(step):
     """``step`` run inside a one-iteration ``fori_loop`` of one jitted call: the same computation (the same
-    bits), cheaper to call — Samba's step 490 µs a call against 320 µs, the neural fields' 870 µs against
-    730 µs (``docs/speed.md``; probably because XLA's CPU runtime runs a loop body's many small kernels
-    one after the other instead of handing independent ones to its thread pool).
+    bits), cheaper to call (probably because XLA's CPU runtime runs a loop body's many small kernels one
+    after the other instead of handing independent ones to its thread pool).
 
     Every architecture builds its step as a ``functools.partial`` of a jitted function with the map arrays
     and the hashable parameters bound as keywords; the wrapper passes the arrays as arguments and binds the
@@ -393,7 +392,7 @@ def _looped_impl(state, obs, arrays, *, func, static):
 def _looped(func, static):
     """The jitted :func:`_looped_impl` of one step function and its static parameters, made once per process: the
     parameters are bound here, not passed as static arguments, so a tick does not hash them again (a frozen
-    dataclass hashes all its fields on every call: ~20 µs a tick for Samba's)."""
+    dataclass hashes all its fields on every call, a noticeable part of a tick for Samba's)."""
     import jax
 
     return jax.jit(functools.partial(_looped_impl, func=func, static=static))

@@ -443,7 +443,7 @@ def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, s
 
 
 def _freeze_background(fig, ax, dynamic: list) -> None:
-    """Speed up the frames (a few-fold): lay the figure out once, render everything but the ``dynamic``
+    """Speed up the frames: lay the figure out once, render everything but the ``dynamic``
     artists (walls, axes, ticks, legend) to one image, and show that image instead of redrawing them.
 
     The frames must then be saved at the figure's own dpi (the image is in pixels).

@@ -101,8 +101,8 @@ def rasterise(obstacles: Sequence[Padded], size, cell: float) -> np.ndarray:
 
 @functools.lru_cache(maxsize=64)
 def _remembered_bitmap(obstacles, size, cell: float) -> np.ndarray:
-    """:func:`rasterise`, remembered (read-only): a replan after a known event rasterises the same map in every
-    run of a world, 7 ms each time."""
+    """:func:`rasterise`, remembered per process (read-only): a replan after a known event rasterises the same
+    map in every run of a world, and a comparison runs every architecture and trial in it."""
     W = _rasterise(obstacles, size, cell)
     W.flags.writeable = False
     return W
@@ -207,7 +207,7 @@ def free_cell_at(W: np.ndarray, point, cell: float) -> tuple[int, int] | None:
 
 
 def grid_cells(W: np.ndarray) -> np.ndarray:
-    """The uniform-grid decomposition (baseline of DESIGN §4): every free bitmap cell is a cell of its own.
+    """The uniform-grid decomposition (a baseline of docs/design.md §4): every free bitmap cell is a cell of its own.
 
     Labels ``1 … n`` in row-major order (bottom row first), ``-1`` on occupied cells.
     """

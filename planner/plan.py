@@ -24,7 +24,7 @@ from planner.slippery import label_slippery
 from planner.visibility import visible_checkpoints
 from robots.params import KHEPERA
 
-#: The decompositions: slippery cells (ch. 3.2.2) and the two baselines of DESIGN §4.
+#: The decompositions: slippery cells (ch. 3.2.2) and the two baselines of docs/design.md §4.
 METHODS = ("slippery", "quadtree", "grid")
 
 #: Default cell size (m): with the 25 mm cushion, a 0.12 m doorway of ``three-rooms`` keeps two free cells.

@@ -1,4 +1,4 @@
-"""Quadtree decomposition of a bitmap: the classical approximate cell decomposition baseline (DESIGN §4).
+"""Quadtree decomposition of a bitmap: the classical approximate cell decomposition baseline (docs/design.md §4).
 
 The thesis compares slippery cells with octree decompositions (ch. 3.2.2, after Quinlan and Khatib
 1993a and Faverjon 1984); in the plane that is the quadtree. To compare like with like, the quadtree

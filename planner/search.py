@@ -9,8 +9,8 @@ route is only as good as its checkpoint path, so the search minimises that path'
 
 Because p_i depends on p_{i−1}, the cost of entering a cell is not a property of the graph arc alone,
 and a plain shortest path over cells optimises something else (a Dijkstra over cells that keeps the
-checkpoint of the first arrival returned a longer checkpoint path in about 2 % of plans on small random
-workspaces). The search therefore runs over **states (cell, checkpoint at which it was entered)**:
+checkpoint of the first arrival can return a longer checkpoint path, and on random workspaces sometimes
+does). The search therefore runs over **states (cell, checkpoint at which it was entered)**:
 
 * the start state is ``(c_0, s)``; from ``(c, p)`` the arc to a neighbour ``n`` leads to ``(n, q)`` with
   ``q`` the closest point to ``p`` on the boundary of ``c`` and ``n``, at cost ``|p − q|``;
@@ -20,11 +20,11 @@ The transitions are deterministic and the future cost depends only on the state,
 this state graph is exactly the route of least checkpoint-path length over all sequences of adjacent
 cells. Such a sequence may revisit a cell when that shortens the greedy path: the rule is myopic, and
 stepping into a neighbour and straight back (a zero-length leg) re-enters the cell at a corner from
-which the next boundary is closer (on 20 × 30 random workspaces: about 7 % of quadtree plans, 2 % of
-slippery-cell plans, never on the grid). The state graph is finite: a closest point on an axis-aligned
-run keeps a coordinate of the point it was measured from or takes a grid coordinate, so every
-coordinate is a grid line or a coordinate of the start. Costs are non-negative and ``|p − g|`` is a
-consistent heuristic (triangle inequality), so A* has the optimum when it first pops the final state.
+which the next boundary is closer (some quadtree and slippery-cell plans on random workspaces do so).
+The state graph is finite: a closest point on an axis-aligned run keeps a coordinate of the point it
+was measured from or takes a grid coordinate, so every coordinate is a grid line or a coordinate of
+the start. Costs are non-negative and ``|p − g|`` is a consistent heuristic (triangle inequality), so
+A* has the optimum when it first pops the final state.
 """
 
 from __future__ import annotations

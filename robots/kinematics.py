@@ -4,7 +4,7 @@ The same functions run on NumPy (the pymunk world, the NumPy references) and on 
 jitted training loops): pass ``xp=np`` or ``xp=jnp``. They are pure and shape-polymorphic, so they
 ``jit`` and ``vmap`` without change.
 
-Model (DESIGN §2), per control period of ``n`` sub-steps of ``dt``:
+Model (docs/design.md §2), per control period of ``n`` sub-steps of ``dt``:
 
 1. the command ``c = (v_l, v_r)`` is clipped to ``±c*`` and rounded to the speed unit (the set-point);
 2. each wheel follows that set-point with a first-order lag,
@@ -119,8 +119,8 @@ def advance_pose(state: RobotState, setpoint, noise, n: int, params: RobotParams
     sines and cosines from :func:`robots.trig.sincos`. The end position can differ from :func:`advance`'s
     in the last bits (within 1e-6 m, ``tests/test_kinematics.py``); heading and wheels are the same."""
     dx, dy, heading, wheels = _substeps(state, setpoint, noise, n, params, xp, partial(sincos, xp=xp))
-    # Both sums in one reduction: as two, XLA evaluated the sub-steps' motion (lag, slip, sines, cosines)
-    # once for each (docs/speed.md, fourth round).
+    # Both sums in one reduction: as two, XLA would evaluate the sub-steps' motion (lag, slip, sines,
+    # cosines) once for each.
     shift = xp.sum(xp.stack([dx, dy], axis=-2), axis=-1)
     pose = xp.stack([state.pose[..., 0] + shift[..., 0], state.pose[..., 1] + shift[..., 1],
                      wrap_angle(heading[..., -1], xp)], axis=-1)

@@ -1,4 +1,4 @@
-"""Parameters of the Khepera-like robot, in one frozen dataclass (DESIGN §2).
+"""Parameters of the Khepera-like robot, in one frozen dataclass (docs/design.md §2).
 
 Every number names its source. SI units throughout: metres, seconds, radians.
 """

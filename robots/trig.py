@@ -1,11 +1,11 @@
 """Sine and cosine of many headings at once, vectorised for XLA's CPU back-end.
 
-XLA's CPU ``sin`` and ``cos`` cost several nanoseconds an element, where the arithmetic around them costs a
-fraction of one. Training's kinematics evaluate both for every one of the 64 sub-steps of a control
-period, in every trial of every step (:func:`robots.kinematics.advance_pose`), and they were the largest
-kernels of a training step (docs/speed.md, fourth round). :func:`sincos` evaluates them with the Cephes
-single-precision polynomials (S. L. Moshier, ``sinf.c``/``cosf.c``) in plain arithmetic, which XLA fuses
-and vectorises: the pair costs about a ninth of XLA's (``python benchmarks/trig_kernels.py``).
+XLA's CPU ``sin`` and ``cos`` cost far more an element than the arithmetic around them. Training's
+kinematics evaluate both for every one of the 64 sub-steps of a control period, in every trial of every
+step (:func:`robots.kinematics.advance_pose`), so they would be the largest kernels of a training step.
+:func:`sincos` evaluates them with the Cephes single-precision polynomials (S. L. Moshier,
+``sinf.c``/``cosf.c``) in plain arithmetic, which XLA fuses and vectorises: the pair costs a fraction of
+XLA's.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The pymunk world: walls, obstacles, moving obstacles, events, contact and IR sensors (DESIGN §2).
+"""The pymunk world: walls, obstacles, moving obstacles, events, contact and IR sensors (docs/design.md §2).
 
 This is the imperative shell around :mod:`robots.kinematics` for every run that has obstacles in it
 (thesis ch. 6.2: Figs. 6.3–6.8). One :class:`PymunkWorld` holds one robot in one :class:`World`::
@@ -337,7 +337,7 @@ class PymunkWorld:
     def _end_contact(self, arbiter, space, data) -> None:
         # Chipmunk calls begin and separate in balanced pairs, and a body's arbiters are those of contacts
         # between the two: with none open, ``_slide`` has nothing to remove (and its ``each_arbiter`` would
-        # still cost 1-2 µs a sub-step).
+        # still cost time on every sub-step).
         self._touching -= 1
 
     # ---------------------------------------------------------------------------------------- sensors

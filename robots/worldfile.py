@@ -1,4 +1,4 @@
-"""World files: the JSON format of DESIGN §2, checked key by key, and the named worlds.
+"""World files: the JSON format of docs/design.md §2, checked key by key, and the named worlds.
 
 A world is a JSON object in metres and radians, origin bottom-left, x right, y up::
 
@@ -167,7 +167,7 @@ DIFFICULTY_KEYS = ("family", "seed", "level", "narrowest_passage_m", "route_leng
 
 @dataclass(frozen=True)
 class World:
-    """A validated world (DESIGN §2). Build it with :func:`load_world` or :func:`parse_world`."""
+    """A validated world (docs/design.md §2). Build it with :func:`load_world` or :func:`parse_world`."""
 
     name: str
     size: Point
@@ -227,7 +227,7 @@ class World:
         return np.maximum(d, 0.0)
 
     def counts(self) -> dict:
-        """The ``ekm worlds --json`` summary of this world (DESIGN §6)."""
+        """The ``ekm worlds --json`` summary of this world (docs/design.md §6)."""
         counts = {"name": self.name, "size": list(self.size), "walls": len(self.walls),
                   "obstacles": len(self.obstacles), "unforeseen": len(self.unforeseen),
                   "moving": len(self.moving), "moving_goal": self.moving_goal}

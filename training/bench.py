@@ -1,4 +1,4 @@
-"""Throughput of online training: the jitted JAX loop against the plain NumPy reference (DESIGN §7).
+"""Throughput of online training: the jitted JAX loop against the plain NumPy reference (docs/design.md §7).
 
 Used by ``ekm bench`` (a quick check) and ``benchmarks/bench_training.py`` (the full study). Times are
 wall-clock seconds of already-compiled code; compilation is timed separately.
@@ -22,7 +22,8 @@ def jax_trial_steps_per_s(cfg: EKMConfig, *, trials: int = 5, steps: int = 5000,
     """Trial-steps per second of ``train_chunk`` (one ``lax.scan`` of ``steps``, ``vmap`` over ``trials``),
     with the trials spread over ``devices`` (default: every JAX device present) as :func:`training.run.train`
     spreads them (:func:`training.run.trial_layout`; a padding trial is not counted). The best of
-    ``repeats`` chunks, and their median: this machine's chunks vary by ±30 % from one to the next."""
+    ``repeats`` chunks, and their median: a chunk's time varies from one to the next, so one chunk is not
+    a measurement."""
     tcfg = TrainConfig(steps=100_000, trials=trials)
     padded, sharding = trial_layout(trials, devices)
     keys = jax.random.split(jax.random.PRNGKey(0), padded)

@@ -5,7 +5,7 @@ decaying exploration noise), move the robot (JAX kinematics, 10 % actuator noise
 displacement v, learn. Targets are random points of the arena, one at a time; a new one is drawn when
 the robot comes within ``reach`` of the current one, stops, or spends ``patience`` steps on it.
 
-Performance (DESIGN §7): a chunk of steps is one ``lax.scan``; trials are ``vmap``-ed; every random
+Performance (docs/design.md §7): a chunk of steps is one ``lax.scan``; trials are ``vmap``-ed; every random
 number of the chunk is drawn before the scan.
 """
 
@@ -35,14 +35,13 @@ class TrainConfig:
     margin: float = 0.1  # m; targets keep this far from the border
     # Targets anywhere in the arena (ch. 6.1: "a randomly selected sequence of targets"), as in the test.
     # Near targets (a number: within that distance of the robot) exercise M_k u_p more but leave the
-    # far-target fallback M_k w_k (Eq. 4.5), which serves most test steps, less trained: within 0.3 m,
-    # T(25) = 9.99 against 7.82 (seed 0).
+    # far-target fallback M_k w_k (Eq. 4.5), which serves most test steps, less trained, so the map
+    # reaches the test's targets more slowly.
     target_range: float | None = None  # m; None: anywhere in the arena
     # Dwell: a target stays for `patience` steps even once reached (reach = 0). The robot then sits on
     # it and learns that a zero displacement needs a zero command, which is what makes it *stop* at
     # the target in the test (Eq. 6.1); switching as soon as it is reached (reach > 0) leaves it orbiting.
-    # Seed 0, signed chart: patience 20 gives E = 1.3 mm, T(25) = 7.69; 25 1.3 mm, 7.82; 30 1.3 mm, 8.12.
-    # (In the polar chart 20 ended at E = 3.3, 2.8, 3.2 mm for seeds 0–2, 25 at 2.1–2.5 mm.)
+    # 25 steps: a longer dwell slows reaching; a shorter one makes the polar chart's map stop less precisely.
     reach: float = 0.0  # m; > 0: a target closer than this (or a stop command) is done early
     patience: int = 25  # steps on one target before a new one is drawn
     schedules: Schedules = field(default_factory=Schedules)
@@ -110,8 +109,8 @@ def draw_noise(key, length: int, params: RobotParams = KHEPERA):
     ``(length, 2)`` for the next target.
 
     Each slip ξ is the centre of one of 2¹⁶ equal bins of (-1, 1), from half of a 32-bit draw: the two
-    wheels share one draw, which halves the random bits generated, the bulk of the chunk's noise (docs/speed.md,
-    fourth round). Its resolution, 1.5e-6 of a wheel's speed, is far below the 8 mm/s speed unit.
+    wheels share one draw, which halves the random bits generated, the bulk of the chunk's noise. Its
+    resolution, 1.5e-6 of a wheel's speed, is far below the 8 mm/s speed unit.
     """
     k1, k2, k3 = jax.random.split(key, 3)
     draws = (length, params.noise_shape(params.target_period)[0])  # one per noise period, both wheels

@@ -1,5 +1,5 @@
 """A plain NumPy reference of one online training step (thesis ch. 4.3) — for tests and as the speed
-baseline of ``benchmarks/`` (DESIGN §7).
+baseline of ``benchmarks/`` (docs/design.md §7).
 
 Written independently of the JAX code (no ``jax`` import here): the same equations, spelled out on
 NumPy arrays in float64, one trial at a time. ``tests/test_reference.py`` holds the jitted JAX step equal

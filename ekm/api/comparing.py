@@ -145,10 +145,15 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     progress : bool, default False
         Show a progress bar (runs done) on stderr.
 
-    Returns :class:`Table`, whose ``to_dict()`` is ``ekm compare --json`` for the same arguments (but for
-    ``seconds``, the wall time).
+    Returns
+    -------
+    Table
+        Its ``to_dict()`` is ``ekm compare --json`` for the same arguments (but for ``seconds``, the wall
+        time).
 
-    Example::
+    Examples
+    --------
+    ::
 
         t = ekm.compare(["open-arena", "concave-obstacle"], ["fusion", "fields"], trials=2, time_limit=40)
         [(r["architecture"], r["world"], r["success_rate"]) for r in t.rows]

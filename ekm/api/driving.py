@@ -27,7 +27,7 @@ def scenario_config(prog: str, *, time_limit, recover, checkpoints, cell):
 
 @dataclass(frozen=True)
 class Outcome(Result):
-    """How one run went (DESIGN §6): ``reached`` the goal (within 5 mm and without a collision), after
+    """How one run went (docs/design.md §6): ``reached`` the goal (within 5 mm and without a collision), after
     ``time_s`` simulated seconds along ``path_m`` metres, with ``collisions`` contact episodes,
     ``checkpoints_reached``, ``replans``, ``trapped`` (the monitor saw no progress), ``final_distance_m``
     to the goal, ``contact_s`` the time spent in contact; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
@@ -92,7 +92,7 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         recover: bool = True, seed: int = 0, time_limit: float = 120.0, checkpoints: str = "visible",
         cell: float | None = None, progress: bool = False) -> Outcome:
     """Drive the simulated robot from the world's start to its goal: the slippery-cell planner's
-    checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; DESIGN §5).
+    checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; docs/design.md §5).
 
     Parameters
     ----------
@@ -125,9 +125,14 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
     progress : bool, default False
         Show a progress bar in simulated seconds on stderr.
 
-    Returns :class:`Outcome`, whose ``to_dict()`` is ``ekm run --json`` for the same arguments.
+    Returns
+    -------
+    Outcome
+        Its ``to_dict()`` is ``ekm run --json`` for the same arguments.
 
-    Example::
+    Examples
+    --------
+    ::
 
         out = ekm.run("concave-obstacle", architecture="fields", seed=1)
         out.reached, out.time_s

@@ -9,7 +9,7 @@ from ekm.api.checks import whole
 from ekm.api.result import Result
 
 _PROG = "ekm evaluate"
-#: Metrics of the test (DESIGN §6), then what was tested — the order of ``ekm evaluate --json``.
+#: Metrics of the test (docs/design.md §6), then what was tested — the order of ``ekm evaluate --json``.
 _KEYS = ("E_mm", "P", "T", "D", "trials", "targets", "capped")
 _ABOUT = ("file", "mapping", "ekm", "trained")
 
@@ -30,7 +30,9 @@ class Metrics(Result):
     (None where no target was come within ε); over ``trials`` maps × ``targets`` targets, ``capped`` of
     which hit the 50-step cap. ``to_dict()`` is ``ekm evaluate MAP.npz --json``.
 
-    Example::
+    Examples
+    --------
+    ::
 
         m = ekm.evaluate(ekm.load(), targets=20)
         m.E_mm, m.P["25"]
@@ -144,10 +146,15 @@ def evaluate(maps, *, targets: int = 50, seed: int = 0):
     seed : int, default 0
         Seed of the targets and the noise.
 
-    Returns :class:`Metrics` (one map) or :class:`Evaluation` (a list). Same as ``ekm evaluate MAP.npz
-    [--targets N] [--seed S] --json``.
+    Returns
+    -------
+    Metrics or Evaluation
+        :class:`Metrics` for one map, :class:`Evaluation` for a list; the same as ``ekm evaluate MAP.npz
+        [--targets N] [--seed S] --json``.
 
-    Example::
+    Examples
+    --------
+    ::
 
         ekm.evaluate(ekm.load(), targets=20).E_mm     # mm
         ekm.evaluate(["indirect.npz", "direct.npz"]).save_plot("fig6.png")

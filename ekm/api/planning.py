@@ -84,10 +84,15 @@ def plan(world, start=None, goal=None, *, cell: float | None = None, method: str
         ``visible``: consecutive checkpoints see each other with the robot's clearance (a labelled
         extension, :mod:`planner.visibility`); ``thesis``: the greedy rule of ch. 3.2.3 as written.
 
-    Returns :class:`Plan`, whose ``to_dict()`` is ``ekm plan --json`` for the same arguments (``seconds``,
-    the planning time, differs from run to run).
+    Returns
+    -------
+    Plan
+        Its ``to_dict()`` is ``ekm plan --json`` for the same arguments (``seconds``, the planning time,
+        differs from run to run).
 
-    Example::
+    Examples
+    --------
+    ::
 
         p = ekm.plan("three-rooms-changed", at=7)
         p.checkpoints          # (k, 2) metres, goal last

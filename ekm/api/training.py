@@ -47,9 +47,14 @@ def train(mapping: str, *, neurons: int = 15, priority: int | None = None, chart
     progress : bool, default False
         Show a progress bar and each test's E and P(25) on stderr.
 
-    Returns :class:`Maps`, whose ``to_dict()`` is ``ekm train --json`` for the same arguments.
+    Returns
+    -------
+    Maps
+        Its ``to_dict()`` is ``ekm train --json`` for the same arguments.
 
-    Example::
+    Examples
+    --------
+    ::
 
         maps = ekm.train(mapping="indirect", neurons=8, steps=2000, trials=2, seed=0)
         maps.curve[-1]["E_mm"]      # mm, the last test

@@ -14,7 +14,7 @@ _PROG = "ekm worlds"
 
 
 def world(name_or_path):
-    """A named world (``ekm.worlds()`` lists them), a world file (JSON, DESIGN §2) or a generated world
+    """A named world (``ekm.worlds()`` lists them), a world file (JSON, docs/design.md §2) or a generated world
     spelt ``FAMILY:SEED[:DIFFICULTY]`` (``"maze:7"``, see :func:`generate`), every key checked:
     a :class:`robots.worldfile.World` (sizes and positions in metres, angles in radians). A bad file
     raises :class:`ekm.errors.InputError` naming the file, the key and what is wrong.

@@ -1,4 +1,4 @@
-"""The ``ekm`` console script (DESIGN §6): the imperative shell around the packages.
+"""The ``ekm`` console script (docs/design.md §6): the imperative shell around the packages.
 
 One module per command, each with ``add_parser(sub)`` and ``run(args)``; shared argument types are in
 :mod:`ekm.cli.args`. Each ``run`` parses nothing more than argparse does, calls the one function of the

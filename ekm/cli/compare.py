@@ -1,5 +1,5 @@
 """``ekm compare``: every architecture × world × trial through the scenario runner, in parallel, with
-95 % intervals (DESIGN §6; :mod:`evaluation.compare`)."""
+95 % intervals (docs/design.md §6; :mod:`evaluation.compare`)."""
 
 from __future__ import annotations
 

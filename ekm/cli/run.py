@@ -1,4 +1,4 @@
-"""``ekm run``: drive the robot through a world with one architecture (thesis ch. 6.2; DESIGN §5, §6)."""
+"""``ekm run``: drive the robot through a world with one architecture (thesis ch. 6.2; docs/design.md §5, §6)."""
 
 from __future__ import annotations
 
@@ -47,7 +47,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> None:
-    """Drive the robot through a world with one architecture and report the outcome (DESIGN §6;
+    """Drive the robot through a world with one architecture and report the outcome (docs/design.md §6;
     :func:`ekm.run`)."""
     from ekm.api.driving import run as drive
     from evaluation.pinning import pin_to_one_cpu

@@ -1,5 +1,5 @@
 """``ekm train``: train EKMs online with the ch. 6.1 protocol, save them, and test them as in
-ch. 6.1 along the way (DESIGN §3, §6); checkpoints at every test, ``--resume`` after an interruption."""
+ch. 6.1 along the way (docs/design.md §3, §6); checkpoints at every test, ``--resume`` after an interruption."""
 
 from __future__ import annotations
 
@@ -44,7 +44,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> None:
-    """Train EKMs online with the ch. 6.1 protocol and save them (DESIGN §3, §6): :func:`ekm.train`, or
+    """Train EKMs online with the ch. 6.1 protocol and save them (docs/design.md §3, §6): :func:`ekm.train`, or
     :func:`ekm.resume` with ``--resume``."""
     from ekm.api.training import resume, train
 

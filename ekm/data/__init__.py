@@ -6,10 +6,10 @@ Both were made by the project's own command line with its defaults (training see
     ekm train --mapping indirect --out ekm/data/indirect-signed.npz
     ekm train --mapping indirect --chart polar --out ekm/data/indirect-polar.npz
 
-They were trained before the fourth speed round (docs/speed.md) changed training's slip-noise draws and the
-last bits of its arithmetic: ``ekm train`` with the same defaults now makes maps of the same quality
-(README), not the same bits. They are kept, so that every scenario figure in the README and docs still
-comes from the maps that ship.
+They were trained before training's slip-noise draws (:func:`training.online.draw_noise`) and the last
+bits of its arithmetic were changed to make training faster: ``ekm train`` with the same defaults now
+makes maps of the same quality (README), not the same bits. They are kept, so that every scenario figure
+in the README and docs still comes from the maps that ship.
 
 Each architecture drives the chart it does best with (``DEFAULT_CHART`` of its module in
 :mod:`robots.controllers`); ``--map`` replaces it with any map file.

@@ -1,4 +1,4 @@
-"""The controllers that drive a robot through a world (DESIGN §5).
+"""The controllers that drive a robot through a world (docs/design.md §5).
 
 - :mod:`~robots.controllers.base` — the :class:`Observation` every controller gets each tick and the
   :class:`Controller` it is packaged as;

@@ -34,7 +34,7 @@ to collision of the robot's disc with the object's under each action, −weight(
 never collide (:func:`collision_times`, :func:`avoid`): only actions that collide are inhibited, like
 Riekki's AvoidOpp maps (ch. 5.1, "calculating weights only for the actions in the object sector"). For
 stationary objects the time is a distance along each direction over the speed (:func:`ray_distances`),
-n_speed times cheaper — what keeps a map of 128 remembered IR points at a fraction of a millisecond.
+n_speed times cheaper — what keeps a map of 128 remembered IR points cheap enough for every tick.
 
 **Combining and filtering** (§3.2.7–3.2.8): :func:`mav` keeps for every action the weight of greatest
 magnitude with its sign (an obstacle reached at the same time as the target wins the tie); filtering sets

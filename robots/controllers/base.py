@@ -1,8 +1,8 @@
 """What every controller sees and how it is called: the observation, the controller, the IR helpers.
 
-DESIGN §5: a controller is a pure ``step(state, obs) -> (state, command)`` over pytrees, jitted once and
-reused by every run with the same parameters; the scenario runner (:mod:`evaluation.scenario`) is the
-imperative shell around it. The runner ticks at the base period (0.128 s, the obstacle-avoidance
+A controller (docs/design.md §5) is a pure ``step(state, obs) -> (state, command)`` over pytrees,
+jitted once and reused by every run with the same parameters; the scenario runner
+(:mod:`evaluation.scenario`) is the imperative shell around it. The runner ticks at the base period (0.128 s, the obstacle-avoidance
 period of ch. 6.2) and hands each controller the same :class:`Observation`; a controller with slower
 modules (command fusion's 1.024 s target reaching, ch. 6.2.1) keeps its own clock in its state. The
 runner never asks which architecture it runs.

@@ -34,7 +34,7 @@ Where the equations are silent, this module chooses (and says why):
   displacements that the w_i encode.
 
 **``form=extended``** (the default) is a departure, measured side by side with the thesis's form in
-``docs/scenarios.md``. As written, the fields keep nothing between ticks: each tick the robot takes the
+``docs/reproduce/architectures.md``. As written, the fields keep nothing between ticks: each tick the robot takes the
 free direction nearest the target, dithers where that direction flips from side to side (mid-wall, the
 mouth of a U), and forgets a U's bottom once it is out of the sensors' 0.2 m. The extension keeps the
 fields' equations and adds three things, each with its reason:
@@ -79,7 +79,7 @@ DEFAULT_CHART = "signed"
 
 @dataclass(frozen=True)
 class FieldParams:
-    """Parameters of the neural fields; the defaults are the best documented variant (``docs/scenarios.md``)."""
+    """Parameters of the neural fields; the defaults are the best documented variant (``docs/reproduce/architectures.md``)."""
 
     sensors: str = field(default="long", metadata={"help": "IR ring: long (12 around, 17.5 cm; ch. 6.2.2) or short",
                                                    "choices": ("short", "long")})

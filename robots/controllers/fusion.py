@@ -8,7 +8,7 @@ when the checkpoint changes ("the target reaching module can react immediately t
 checkpoint", Fig. 6.5). Each new module output updates the shared motor state (the last c_p and c_o),
 and the fused command is sent whenever it changes; sending an unchanged command changes nothing.
 
-Two readings of ch. 4.5, chosen by measurement (``docs/scenarios.md``):
+Two readings of ch. 4.5, chosen by measurement (``docs/reproduce/architectures.md``):
 
 - **β and the stop.** Eq. 4.11 scales target reaching by β even in free space, and the Khepera's
   speed unit (8 mm/s) rounds β c_p to zero 1/β times further from the target than c_p itself: with

@@ -61,7 +61,7 @@ def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: floa
     cos, sin = jnp.cos(phi), jnp.sin(phi)  # (m,) each ray's direction; it starts on the rim
     ox, oy = pose[0] + radius * cos, pose[1] + radius * sin
     # Computed once, not once per point and ray: left to itself XLA fuses the cos and sin into the (K, m)
-    # loop below and evaluates them K times over (docs/speed.md); the values are the same either way.
+    # loop below and evaluates them K times over; the values are the same either way.
     cos, sin, ox, oy = jax.lax.optimization_barrier((cos, sin, ox, oy))
     rx, ry = pts[:, 0:1] - ox[None, :], pts[:, 1:2] - oy[None, :]  # (K, m) from each ray's start
     along = rx * cos[None, :] + ry * sin[None, :]
@@ -119,7 +119,7 @@ def _add_hits(pts, seen, slot, hits, ok, t, merge: float):
 
 def _distance(ax, ay, bx, by):
     """|a − b| from components — ``jnp.linalg.norm`` over a trailing axis of 2 to the bit, without the slow
-    reduction over that axis on the CPU (docs/speed.md)."""
+    reduction over that axis on the CPU."""
     dx, dy = ax - bx, ay - by
     return jnp.sqrt(dx * dx + dy * dy)
 
@@ -134,7 +134,7 @@ def egocentric(memory: Memory, pose, *, radius: float):
 
 
 #: Sizes the remembered points that count are packed into before the per-neuron work (:func:`over_packed`).
-#: Most ticks count a few dozen of the 128–256 slots (``docs/speed.md``), so the work shrinks 4–16×.
+#: Most ticks count only a few dozen of the 128–256 slots, so the work shrinks to the slots that count.
 PACK_SIZES = (16, 64)
 
 

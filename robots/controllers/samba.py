@@ -31,7 +31,7 @@ Every 0.128 s tick, :func:`maps` (pure; :func:`step` is it jitted, plus the whee
    weight curve, w^(1/(1 + tie))), so a jump to another direction needs a clearly better action. When the
    checkpoint lies straight behind an obstacle, left and right tie, and as the robot turns, the grid's
    directions move under the tie: without hysteresis the winner flips side tick after tick and the robot
-   turns on the spot (3.3 s lost in ``tests/test_samba.py``'s world). The chosen direction is refined
+   turns on the spot, losing time (``tests/test_samba.py`` has such a world). The chosen direction is refined
    between its neighbours by a parabola through their weights (the grid is 5° coarse, which misses a
    checkpoint 20 cm ahead by up to 9 mm). No positive action: the robot stops (§3.1: "only positive weights
    cause actions to be performed").
@@ -46,7 +46,7 @@ moves along its old heading, which the maps never weighed as the action. The arb
 speed it hands over so that this straight-ahead motion is itself not inhibited on the composite map
 (:func:`forward_speed`): the robot turns on the spot rather than drive into what it turns away from.
 
-Measured choices (rejected settings with numbers) are in ``docs/scenarios.md`` ("Samba action maps").
+Measured choices (rejected settings with numbers) are in ``docs/reproduce/samba.md``.
 """
 
 from __future__ import annotations
@@ -65,7 +65,7 @@ from robots.params import KHEPERA, RobotParams
 
 @dataclass(frozen=True)
 class SambaParams:
-    """Parameters of Samba; one set for every world (``docs/scenarios.md``, "Samba action maps")."""
+    """Parameters of Samba; one set for every world (``docs/reproduce/samba.md``)."""
 
     sensors: str = field(default="long", metadata={"help": "IR ring: long (12 around, 17.5 cm; ch. 6.2.2) or short",
                                                    "choices": ("short", "long")})

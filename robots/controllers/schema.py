@@ -46,19 +46,19 @@ A sum shorter than half a Khepera speed unit (4 mm/s, what rounds to a zero whee
 as no motion at all: at the goal, and where the schemas balance exactly, the robot stands still. (Where
 they balance, the motor lag carries it a millimetre or two on; the sum then points back, and this robot,
 which cannot reverse, turns on the spot: a balance on a convex obstacle straight ahead breaks by
-itself, one on a flat obstacle across the way does not — ``docs/scenarios.md``.)
+itself, one on a flat obstacle across the way does not — ``docs/reproduce/architectures.md``.)
 
-**The defaults, and why** (SI units: m/s, m, s; the measurements are in ``docs/scenarios.md``):
+**The defaults, and why** (SI units: m/s, m, s; the measurements are in ``docs/reproduce/architectures.md``):
 
 - ``goal_gain`` 0.16 m/s: c*, the wheels' top speed — the EKM architectures' largest step, so every
   architecture cruises alike;
 - ``slow`` 0.025 m: move-to-goal is linear within 2.5 cm, a gain of 6.4 /s, so one 0.128 s tick closes
   0.82 of the remaining distance: the robot closes on a checkpoint without overshooting it (a gain of
-  more than 1/0.128 s would overshoot, more than 2/0.128 s never settle). 5 cm reached as often and
-  took 1–4 s longer per run in the rooms: the robot crawls up to every checkpoint;
+  more than 1/0.128 s would overshoot, more than 2/0.128 s never settle). 5 cm reached as often but
+  took longer per run in the rooms: the robot crawls up to every checkpoint;
 - ``influence`` S 0.05 m and ``margin`` R 0.01 m from the body surface: the planner puts checkpoints
   2.8 cm from a doorway's wall end, so a wide sphere keeps pushing the robot round them: 8 cm reached as
-  often but took 1.7 times as long (and, with a stronger gain and a wider ``slow``, held it off the
+  often but took much longer (and, with a stronger gain and a wider ``slow``, held it off the
   checkpoints for good); 3 cm leaves too little room to turn at 2 cm a tick and it grazed walls. 5 cm
   is also all the Khepera's short-range ring can see, so both rings feel the same law;
 - ``avoid_gain`` G 0.24 m/s = 1.5 × ``goal_gain``: a single point straight ahead balances move-to-goal
@@ -69,8 +69,8 @@ itself, one on a flat obstacle across the way does not — ``docs/scenarios.md``
   the long-range ring, 0.16 and 0.32 gave the same outcomes; no run touched the mover);
 - ``noise_gain`` 0.04 m/s (a quarter of move-to-goal) with ``persistence`` 2.048 s (16 ticks):
   Arkin's "small amount of noise"; it frees the robot from a balance on a small obstacle straight across
-  its way, but not from the long wall or the U (three times as much noise gets round the wall in 5 of 10
-  runs and loses runs in the rooms).
+  its way, but not from the long wall or the U (much more noise gets round the wall in some runs but
+  loses runs in the rooms).
 """
 
 from __future__ import annotations
@@ -90,7 +90,7 @@ from robots.params import KHEPERA, RobotParams
 @dataclass(frozen=True)
 class SchemaParams:
     """Gains of the motor schemas (m/s at full strength), their distances (m) and the noise's persistence (s).
-    The defaults serve every world (``docs/scenarios.md``)."""
+    The defaults serve every world (``docs/reproduce/architectures.md``)."""
 
     sensors: str = field(default="long", metadata={"help": "IR ring: long (12 around, 17.5 cm) or short "
                                                            "(8 Khepera sensors, 5 cm)", "choices": ("short", "long")})

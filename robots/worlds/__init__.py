@@ -1,1 +1,1 @@
-"""The named worlds (DESIGN §2), shipped as JSON package data; list them with ``ekm worlds``."""
+"""The named worlds (docs/design.md §2), shipped as JSON package data; list them with ``ekm worlds``."""
