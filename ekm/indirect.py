@@ -80,7 +80,7 @@ def update(ekm: IndirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> IndirectEKM:
 def learn(ekm: IndirectEKM, v, c_p, eta, g, cfg: EKMConfig) -> IndirectEKM:
     """Steps 5–6 of ch. 4.3 for neighbourhood weights ``g`` ``(N²,)``: Δw_i = η g_i (v - w_i) (Eq. 4.7);
     ΔM_i = η g_i (c_p - M_i ṽ) ṽᵀ (Eq. 4.9, gradient descent on Eq. 4.8), ṽ local to each neuron.
-    (``benchmarks/profile_training.py`` times it with stand-ins for the winner and G.)"""
+    (``benchmarks/perf/profile_training.py`` times it with stand-ins for the winner and G.)"""
     v_loc = model_input(v, ekm.w, cfg)  # (N², 2), or (2,) in the signed chart (the same for every neuron)
     err = c_p[None, :] - apply(ekm.M, v_loc)
     M = ekm.M + (eta * g)[:, None, None] * err[:, :, None] * v_loc[..., None, :]

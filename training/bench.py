@@ -1,6 +1,6 @@
 """Throughput of online training: the jitted JAX loop against the plain NumPy reference (docs/design.md §7).
 
-Used by ``ekm bench`` (a quick check) and ``benchmarks/bench_training.py`` (the full study). Times are
+Used by ``ekm bench`` (a quick check) and ``benchmarks/perf/bench_training.py`` (the full study). Times are
 wall-clock seconds of already-compiled code; compilation is timed separately.
 """
 

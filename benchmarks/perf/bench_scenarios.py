@@ -2,9 +2,9 @@
 
 Run from the repository root (about four minutes on 2 cores with the defaults)::
 
-    python benchmarks/bench_scenarios.py                          # markdown tables
-    python benchmarks/bench_scenarios.py --architectures fusion,fields:form=thesis --worlds concave-obstacle
-    python benchmarks/bench_scenarios.py --json                   # the numbers
+    python benchmarks/perf/bench_scenarios.py                          # markdown tables
+    python benchmarks/perf/bench_scenarios.py --architectures fusion,fields:form=thesis --worlds concave-obstacle
+    python benchmarks/perf/bench_scenarios.py --json                   # the numbers
 
 (options: ``--architectures`` in ``ekm run``'s spelling, comma-separated, default
 ``fusion,fields,samba,schema`` (the README's compare table) — any architecture :mod:`robots.controllers.spec`
@@ -58,23 +58,20 @@ import math
 import os
 import sys
 import time
-from pathlib import Path
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import monitoring
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a checkout without installing
-
-import evaluation.scenario as scenario  # noqa: E402
-from ekm.data import load_default_map  # noqa: E402
-from ekm.errors import InputError  # noqa: E402
-from evaluation.pinning import pin_to_one_cpu  # noqa: E402
-from evaluation.scenario import ScenarioConfig, run_scenario  # noqa: E402
-from robots.controllers.spec import parse_architectures  # noqa: E402
-from robots.world import PymunkWorld  # noqa: E402
-from robots.worldfile import load_world  # noqa: E402
+import evaluation.scenario as scenario
+from ekm.data import load_default_map
+from ekm.errors import InputError
+from evaluation.pinning import pin_to_one_cpu
+from evaluation.scenario import ScenarioConfig, run_scenario
+from robots.controllers.spec import parse_architectures
+from robots.world import PymunkWorld
+from robots.worldfile import load_world
 
 DEFAULT_ARCHITECTURES = "fusion,fields,samba,schema"  # the four of the README's compare table
 DEFAULT_WORLDS = ("three-rooms-static,three-rooms-moving,three-rooms-changed,extended-obstacle,concave-obstacle,"

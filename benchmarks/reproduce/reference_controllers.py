@@ -1,5 +1,10 @@
 """Analytic reference controllers on the same simulator, scored by the same ch. 6.1 test and metrics.
 
+Run from the repository root (about a minute)::
+
+    python benchmarks/reproduce/reference_controllers.py                # Webots slip noise (the package's model)
+    python benchmarks/reproduce/reference_controllers.py --per-command  # one noise draw per 1.024 s command
+
 Not EKMs: they show which (E, T(25), D(25)) the simulator itself allows in the 1 × 1 m arena, so the
 trained maps can be judged against them (the thesis quotes T ≈ 9 steps/m and D < 9 % for its indirect
 map in Webots). One 1.024 s step holds one wheel command, so the robot moves on one circular arc per
@@ -9,11 +14,6 @@ step; each controller is a rule for choosing that arc:
   that turns the heading by 2α — driving backwards to targets behind (|α| > π/2), scaled down to c*
   when infeasible. It is what a perfect indirect map would command (Eq. 4.5 with exact M_k).
 - ``turn > θ``: rotate in place by α when |α| > θ (and the target is more than 3 cm away), else ``arc``.
-
-Run from the repository root (about a minute)::
-
-    python benchmarks/reference_controllers.py                # Webots slip noise (the package's model)
-    python benchmarks/reference_controllers.py --per-command  # one noise draw per 1.024 s command
 
 ``--per-command`` draws each wheel's noise once per command, with the same 10 % standard deviation
 (uniform half-width 0.1·√3): the model this package used before it followed Webots. A full-speed

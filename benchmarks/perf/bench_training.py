@@ -1,10 +1,9 @@
-"""How fast online EKM training runs (DESIGN §7): JAX vs NumPy, scaling with neurons and trials, and
-the whole ch. 6.1 protocol.
+"""How fast online EKM training runs (DESIGN §7): JAX vs NumPy, neurons, trials, the whole ch. 6.1 protocol.
 
 Run from the repository root (takes a few minutes on 2 cores)::
 
-    python benchmarks/bench_training.py            # markdown tables
-    python benchmarks/bench_training.py --quick    # fewer sizes
+    python benchmarks/perf/bench_training.py            # markdown tables
+    python benchmarks/perf/bench_training.py --quick    # fewer sizes
 
 Prints: (1) trial-steps/s of the jitted ``lax.scan``/``vmap`` loop and of the NumPy reference for
 both mappings; (2) JAX cost vs lattice size 5×5 … 30×30 (5 trials); (3) JAX cost vs trials 1 … 64

@@ -2,7 +2,7 @@
 
 Run from the repository root::
 
-    python benchmarks/bench_planner.py
+    python benchmarks/perf/bench_planner.py
 
 (options: ``--seeds 3`` random workspaces per density, ``--repeat 3`` timing repeats, best kept,
 ``--size 200`` side of the random bitmaps). Prints a markdown table and a last line saying whether slippery
@@ -22,20 +22,17 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a checkout without installing
-
-from planner import DEFAULT_CELL, METHODS, decompose  # noqa: E402
-from planner.bitmap import FREE, free_cell_at, padded_obstacles, rasterise  # noqa: E402
-from planner.checkpoints import greedy_checkpoints, path_length  # noqa: E402
-from planner.graph import adjacency  # noqa: E402
-from planner.examples import random_bitmap  # noqa: E402
-from planner.search import shortest_route  # noqa: E402
-from robots.params import KHEPERA  # noqa: E402
-from robots.worldfile import load_world, named_worlds  # noqa: E402
+from planner import DEFAULT_CELL, METHODS, decompose
+from planner.bitmap import FREE, free_cell_at, padded_obstacles, rasterise
+from planner.checkpoints import greedy_checkpoints, path_length
+from planner.graph import adjacency
+from planner.examples import random_bitmap
+from planner.search import shortest_route
+from robots.params import KHEPERA
+from robots.worldfile import load_world, named_worlds
 
 DENSITIES = (0.1, 0.2, 0.3, 0.4)
 

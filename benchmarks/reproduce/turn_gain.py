@@ -1,5 +1,9 @@
 """How sharply trained maps turn towards a far target: the turn gain of one step.
 
+Run from the repository root with trained map files (first trial of each)::
+
+    python benchmarks/reproduce/turn_gain.py indirect.npz direct.npz
+
 A target 0.6 m away (beyond one step's reach, so the indirect map uses the fallback c = M_k w_k of
 Eq. 4.5) appears at bearing α; the robot, at rest, executes one noise-free 1.024 s step of the map's
 command and sees the target at α'. The turn gain is g = (α − α')/α, with bearings measured from the
@@ -9,10 +13,6 @@ robot's front for targets ahead and from its back for targets behind (it may rev
 - g = 2: the step turns twice as far, to −α — the robot weaves from side to side on its way, and with
   noise the weave neither grows nor dies (|1 − g| = 1);
 - 0 < g < 1: it turns part of the way and the weave dies out.
-
-Run from the repository root with trained map files (first trial of each)::
-
-    python benchmarks/turn_gain.py indirect.npz direct.npz
 """
 
 from __future__ import annotations

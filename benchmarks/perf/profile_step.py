@@ -2,9 +2,9 @@
 
 Run from the repository root (about 20 s)::
 
-    python benchmarks/profile_step.py                                   # fields on three-rooms-static
-    python benchmarks/profile_step.py --architecture samba --world concave-obstacle --top 20
-    python benchmarks/profile_step.py --training indirect        # one training step (5 trials), in its scan
+    python benchmarks/perf/profile_step.py                                   # fields on three-rooms-static
+    python benchmarks/perf/profile_step.py --architecture samba --world concave-obstacle --top 20
+    python benchmarks/perf/profile_step.py --training indirect        # one training step (5 trials), in its scan
 
 Drives one run of the architecture's shipped map (seed 0) to record its observations, takes the state and
 observation two thirds of the way through, and calls the step the way :func:`evaluation.scenario.run_scenario`
@@ -35,10 +35,8 @@ import os
 import re
 import sys
 import tempfile
-from pathlib import Path
 
 os.environ["XLA_FLAGS"] = (os.environ.get("XLA_FLAGS", "") + " --xla_cpu_enable_xprof_traceme=true").strip()
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a checkout without installing
 
 import jax  # noqa: E402
 import numpy as np  # noqa: E402

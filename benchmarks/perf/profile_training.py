@@ -2,9 +2,9 @@
 
 Run from the repository root (about a minute on 2 cores)::
 
-    python benchmarks/profile_training.py                      # markdown table, indirect, 15×15, 5 trials
-    python benchmarks/profile_training.py --mapping direct
-    XLA_FLAGS=--xla_force_host_platform_device_count=2 python benchmarks/profile_training.py   # (one device is used)
+    python benchmarks/perf/profile_training.py                      # markdown table, indirect, 15×15, 5 trials
+    python benchmarks/perf/profile_training.py --mapping direct
+    XLA_FLAGS=--xla_force_host_platform_device_count=2 python benchmarks/perf/profile_training.py   # (one device is used)
 
 Each row is one jitted ``lax.scan`` of ``--steps`` steps, ``vmap``-ed over ``--trials`` trials, exactly as
 :func:`training.online.train_chunk` runs it (noise drawn up front inside the jitted call), with the step
@@ -33,21 +33,18 @@ import os
 import sys
 import time
 from functools import partial
-from pathlib import Path
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from ekm import maps  # noqa: E402
-from ekm.config import EKMConfig  # noqa: E402
-from ekm import indirect  # noqa: E402
-from ekm.kohonen import neighbourhood, winner  # noqa: E402
-from robots.kinematics import advance_pose, egocentric, quantize_command  # noqa: E402
-from robots.params import KHEPERA  # noqa: E402
-from training.online import TrainConfig, Trainee, draw_noise, start, train_chunk, train_step  # noqa: E402
+from ekm import maps
+from ekm.config import EKMConfig
+from ekm import indirect
+from ekm.kohonen import neighbourhood, winner
+from robots.kinematics import advance_pose, egocentric, quantize_command
+from robots.params import KHEPERA
+from training.online import TrainConfig, Trainee, draw_noise, start, train_chunk, train_step
 
 
 def variant_step(s: Trainee, draws, t, cfg, tcfg, params, parts: frozenset):

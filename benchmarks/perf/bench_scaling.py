@@ -1,11 +1,10 @@
-"""How the work scales with cores: ``ekm compare`` wall time on 1 and 2 worker processes, and training
-throughput on 1 and 2 JAX host devices.
+"""How the work scales with cores: ``ekm compare`` on 1 and 2 worker processes, training on 1 and 2 JAX devices.
 
 Run from the repository root (about 5 minutes on 2 cores with the defaults)::
 
-    python benchmarks/bench_scaling.py                       # both studies, markdown tables
-    python benchmarks/bench_scaling.py --only training       # training throughput only (about a minute)
-    python benchmarks/bench_scaling.py --only compare --workers 1,2 --trials 10
+    python benchmarks/perf/bench_scaling.py                       # both studies, markdown tables
+    python benchmarks/perf/bench_scaling.py --only training       # training throughput only (about a minute)
+    python benchmarks/perf/bench_scaling.py --only compare --workers 1,2 --trials 10
 
 **Compare**: the README's table (``--worlds``: the eight named worlds, ``--architectures
 fusion,fields,samba,schema``, ``--trials 10``: 320 runs) is run once per worker count as its own ``ekm
@@ -34,7 +33,6 @@ import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
 WORLDS = ("three-rooms-static,three-rooms-moving,three-rooms-changed,extended-obstacle,concave-obstacle,three-rooms,"
           "open-arena,moving-target")
 ARCHITECTURES = "fusion,fields,samba,schema"
@@ -58,7 +56,7 @@ def training(devices: list[int], steps: int, protocol: bool) -> list[dict]:
     rows = []
     for n in devices:
         proc = subprocess.run([sys.executable, "-c", TRAINING, str(steps)], capture_output=True, text=True,
-                              env=env_with_devices(n), cwd=ROOT, check=True)
+                              env=env_with_devices(n), check=True)
         r = json.loads(proc.stdout.strip().splitlines()[-1])
         row = {"devices": n, "used": r["indirect"]["devices"],
                "indirect": r["indirect"]["trial_steps_per_s"], "direct": r["direct"]["trial_steps_per_s"],
@@ -69,7 +67,7 @@ def training(devices: list[int], steps: int, protocol: bool) -> list[dict]:
                 t0 = time.perf_counter()
                 subprocess.run([sys.executable, "-m", "ekm.cli", "train", "--mapping", "indirect", "--out",
                                 str(Path(tmp) / "maps.npz")], capture_output=True, text=True,
-                               env=env_with_devices(n), cwd=ROOT, check=True)
+                               env=env_with_devices(n), check=True)
                 row["protocol_s"] = time.perf_counter() - t0
         rows.append(row)
     return rows
@@ -81,7 +79,7 @@ def compare(workers: list[int], trials: int) -> list[dict]:
         cmd = [sys.executable, "-m", "ekm.cli", "compare", "--worlds", WORLDS, "--architectures", ARCHITECTURES,
                "--trials", str(trials), "--workers", str(w), "--json"]
         t0 = time.perf_counter()
-        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, check=True)
+        proc = subprocess.run(cmd, capture_output=True, text=True, check=True)
         wall = time.perf_counter() - t0
         results = json.loads(proc.stdout)["results"]
         first = results if first is None else first

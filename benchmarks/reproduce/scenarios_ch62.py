@@ -1,14 +1,16 @@
 """Thesis ch. 6.2 over many seeds: every architecture × world × seed through the scenario runner, as a table.
 
+Run from the repository root (the default table: 7 architectures × 5 worlds × 10 seeds, 350 runs)::
+
+    python benchmarks/reproduce/scenarios_ch62.py                                # the README's table
+    python benchmarks/reproduce/scenarios_ch62.py --architectures fields:form=thesis,fields:commit=false --seeds 20
+    python benchmarks/reproduce/scenarios_ch62.py --architectures fusion,fields:form=thesis --worlds extended-obstacle,concave-obstacle --recover
+    python benchmarks/reproduce/scenarios_ch62.py --map other.npz               # another trained map for every architecture
+
 Each cell: how many runs reached the goal (stopped there without a collision), how many the trap monitor
 caught, how many ended some other way (C: arrived after a collision; L: time limit; N: no route after
 a change of the map), the runs' collisions, and the mean time and path of the runs that reached the goal.
 The letters per seed show which run did what (R reached, T trapped, C, L, N as above).
-
-    python benchmarks/scenarios_ch62.py                                # the README's table
-    python benchmarks/scenarios_ch62.py --architectures fields:form=thesis,fields:commit=false --seeds 20
-    python benchmarks/scenarios_ch62.py --architectures fusion,fields:form=thesis --worlds extended-obstacle,concave-obstacle --recover
-    python benchmarks/scenarios_ch62.py --map other.npz               # another trained map for every architecture
 
 The runs are set up as the thesis's were: its greedy checkpoints (ch. 3.2.3) and no recovery, unless
 ``--checkpoints visible`` and ``--recover`` say otherwise (``ekm compare`` runs the package's defaults).
@@ -26,9 +28,6 @@ import os
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 DEFAULT_WORLDS = ("three-rooms-static", "three-rooms-moving", "three-rooms-changed", "extended-obstacle",
                   "concave-obstacle")

@@ -2,7 +2,7 @@
 
 Run from the repository root::
 
-    python benchmarks/bench_generate.py
+    python benchmarks/perf/bench_generate.py
 
 (options: ``--seeds 20`` seeds 0..N-1 per family, each at the difficulty its seed draws; ``--difficulty D``
 to fix it). Prints a markdown table: per family the median and the largest wall time of one
@@ -15,13 +15,9 @@ from __future__ import annotations
 
 import argparse
 import statistics
-import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run from a checkout without installing
-
-from robots.generator import FAMILIES, generate  # noqa: E402
+from robots.generator import FAMILIES, generate
 
 
 def main(argv=None) -> None:

@@ -1,15 +1,15 @@
 """The full ch. 6.1 protocol with the package defaults, both mappings, with per-trial spread.
 
+Run from the repository root (about a minute)::
+
+    python benchmarks/reproduce/protocol_ch61.py [--seed S] [--priority K] [--chart {signed,polar}]
+
 5 trials × 100,000 steps, 15×15 neurons, the test of 50 random targets every 10,000 steps (the same
 targets for every trial and checkpoint), 10 % actuator noise — exactly what ``ekm train`` runs. Prints
 markdown: E at every checkpoint, the final E, P/T/D at 5/10/25 mm and capped targets, the per-trial
 range, how far the trained neurons reach (Fig. 6.2: indirect to d ≈ 0.16 m, direct to ≈ 0.11 m) ahead
 of the robot and behind it, and T(25), D(25) split by where each target appeared: ahead (|α| < π/2, the
 robot drives forwards) or behind (it reverses).
-
-Run from the repository root (about a minute)::
-
-    python benchmarks/protocol_ch61.py [--seed S] [--priority K] [--chart {signed,polar}]
 """
 
 from __future__ import annotations

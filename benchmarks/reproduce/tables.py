@@ -1,0 +1,269 @@
+"""Write the result tables of the README and the reproduction pages from the commands they quote.
+
+Each table sits in a page between ``<!-- table: NAME -->`` and ``<!-- end table -->``; this script runs the
+table's command (through the Python API, which the command wraps), renders the table and puts it there.
+
+    python benchmarks/reproduce/tables.py                   # every table: run, render, rewrite the pages
+    python benchmarks/reproduce/tables.py compare ch62      # only these
+    python benchmarks/reproduce/tables.py --check           # fail (exit 1) where a page differs; write nothing
+    python benchmarks/reproduce/tables.py --cache /tmp/t    # keep each command's result, reuse it next time
+
+Every table here is deterministic — a comparison is the same run for run on any number of workers, and
+training is bit for bit the same for the same seed on the same machine — so ``--check`` is how CI knows
+the pages say what the commands give (the slow test ``tests/docs/test_tables.py``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import re
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+ROOT = Path(__file__).resolve().parents[2]
+PAGES = ("README.md", "docs/reproduce/ch61.md", "docs/reproduce/ch62.md", "docs/reproduce/comparison.md",
+         "docs/reproduce/generalisation.md")
+NAMED = ("three-rooms-static", "three-rooms-moving", "three-rooms-changed", "extended-obstacle", "concave-obstacle",
+         "three-rooms", "open-arena", "moving-target")
+FIGURES = {"three-rooms-static": "6.3, 6.6", "three-rooms-moving": "6.4", "three-rooms-changed": "6.5",
+           "extended-obstacle": "6.7", "concave-obstacle": "6.8"}
+SUITE = "corridor:20,traps:20,clutter:20,maze:20,movers:20,blocked:20"
+THESIS_ARCHITECTURES = "fusion,fusion:sensors=long,period=0.128,fields,fields:form=thesis"
+THESIS_HEADS = {"fusion": "fusion, short-range (ch. 6.2.1)",
+                "fusion:sensors=long,period=0.128": "fusion, long-range, 0.128 s (ch. 6.2.2)",
+                "fields": "fields (extended)", "fields:form=thesis": "fields, thesis form"}
+
+
+# ------------------------------------------------------------------------------------------- commands
+
+#: With ``--cache DIR``: each command's result is kept there as JSON and read back instead of run again (to
+#: change how a table looks without running its command; never with ``--check``).
+CACHE: Path | None = None
+
+
+def cached(fn):
+    """``fn``'s result (a comparison's rows, labels and families, or an evaluation's dict), from ``CACHE`` if it
+    holds it."""
+    import json
+    from types import SimpleNamespace
+
+    @functools.cache
+    def run():
+        file = CACHE / f"{fn.__name__}.json" if CACHE else None
+        if file and file.exists():
+            data = json.loads(file.read_text())
+        else:
+            result = fn()
+            data = result.to_dict() if fn.__name__ == "ch61" else \
+                {"rows": list(result.rows), "labels": list(result.labels), "families": list(result.families)}
+            if file:
+                file.write_text(json.dumps(data))
+        return data if fn.__name__ == "ch61" else SimpleNamespace(**data)
+    return run
+
+
+@cached
+def named_defaults():
+    """``ekm compare --worlds NAMED --trials 10`` (the package's defaults)."""
+    import ekm
+
+    return ekm.compare(list(NAMED), "fusion,fields,samba,schema", trials=10)
+
+
+@cached
+def named_thesis():
+    """``ekm compare --worlds NAMED --architectures THESIS_ARCHITECTURES --checkpoints thesis --no-recover
+    --trials 10``."""
+    import ekm
+
+    return ekm.compare(list(NAMED), THESIS_ARCHITECTURES, checkpoints="thesis", recover=False, trials=10)
+
+
+@cached
+def suite_defaults():
+    """``ekm compare --suite SUITE --trials 1``."""
+    import ekm
+
+    return ekm.compare(suite=SUITE, trials=1)
+
+
+@cached
+def suite_thesis():
+    """``ekm compare --suite SUITE --trials 1 --architectures fusion,fields,fields:form=thesis --checkpoints
+    thesis --no-recover``."""
+    import ekm
+
+    return ekm.compare(suite=SUITE, architectures="fusion,fields,fields:form=thesis", checkpoints="thesis",
+                       recover=False, trials=1)
+
+
+@cached
+def ch61():
+    """``ekm train --mapping indirect --out indirect.npz && ekm train --mapping direct --out direct.npz``, then
+    ``ekm evaluate indirect.npz direct.npz``."""
+    import ekm
+
+    with tempfile.TemporaryDirectory() as d:
+        maps = [ekm.train(mapping=m, out=f"{d}/{m}.npz") for m in ("indirect", "direct")]
+        return ekm.evaluate([m.path for m in maps])
+
+
+# ------------------------------------------------------------------------------------------ rendering
+
+def _count(r) -> str:
+    return f"{round(r['success_rate'] * r['trials'])}/{r['trials']}"
+
+
+def _cell(r, *, ci=False, time=False, path=False, trapped=False, collisions=False, best=False) -> str:
+    text = f"**{_count(r)}**" if best else _count(r)
+    parts = [text + (f" ({r['success_ci95'][0]:.2f}–{r['success_ci95'][1]:.2f})" if ci else "")]
+    if time and r["mean_time_s"] is not None:
+        parts.append(f"{r['mean_time_s']:.1f} s")
+    if path and r["mean_path_m"] is not None:
+        parts.append(f"{r['mean_path_m']:.2f} m")
+    if trapped and r["trapped"]:
+        parts.append(f"T {r['trapped']}")
+    if collisions and r["collisions"]:
+        parts.append(f"C {r['collisions']}")
+    return ", ".join(parts)
+
+
+def _grid(rows_of, keys, labels, key_name, name_of, heads=None, **cell) -> list[str]:
+    """A table: one line per key (world or family), one column per architecture (headed by ``heads``, default
+    the labels); the best success of each line in bold, unless every column has it."""
+    heads = heads or {}
+    lines = [f"| {key_name} | " + " | ".join(heads.get(a, a) for a in labels) + " |",
+             "|---|" + "---|" * len(labels)]
+    for key in keys:
+        rs = [rows_of(key, a) for a in labels]
+        rates = [r["success_rate"] for r in rs]
+        top, shared = max(rates), len(set(rates)) == 1
+        lines.append(f"| {name_of(key)} | " + " | ".join(
+            _cell(r, best=r["success_rate"] == top and top > 0 and not shared, **cell) for r in rs) + " |")
+    return lines
+
+
+def _by_world(table):
+    rows = {(r["world"], r["architecture"]): r for r in table.rows}
+    return lambda w, a: rows[(w, a)]
+
+
+def _by_family(table):
+    rows = {(r["family"], r["architecture"]): r for r in table.families}
+    return lambda f, a: rows[(f, a)]
+
+
+def _families(table) -> list[str]:
+    return list(dict.fromkeys(r["family"] for r in table.families))
+
+
+def _world_name(w: str) -> str:
+    return f"`{w}` ({FIGURES[w]})" if w in FIGURES else f"`{w}`"
+
+
+def _family_name(f: str) -> str:
+    return "all 120" if f == "all" else f"`{f}`"
+
+
+def compare_short():
+    t = named_defaults()
+    return _grid(_by_world(t), NAMED, t.labels, "world", lambda w: f"`{w}`", time=True)
+
+
+def compare_long():
+    t = named_defaults()
+    return _grid(_by_world(t), NAMED, t.labels, "world", lambda w: f"`{w}`", ci=True, time=True, collisions=True)
+
+
+def ch62():
+    t = named_thesis()
+    return _grid(_by_world(t), NAMED, t.labels, "world (thesis figure)", _world_name, THESIS_HEADS, path=True,
+                 trapped=True, collisions=True)
+
+
+def generalisation():
+    t = suite_defaults()
+    return _grid(_by_family(t), _families(t), t.labels, "family", _family_name, ci=True)
+
+
+def generalisation_thesis():
+    t = suite_thesis()
+    return _grid(_by_family(t), _families(t), t.labels, "family", _family_name, THESIS_HEADS, trapped=True,
+                 collisions=True)
+
+
+def ch61_table():
+    ev = ch61()
+    lines = ["| after 100,000 steps | E (mm) | P(5) | P(10) | P(25) | T(5) | T(10) | T(25) steps/m | D(5) | D(10) | "
+             "D(25) | capped |", "|---|" + "---:|" * 11]
+    for m in ev["maps"]:
+        name = f"**{m['mapping']}**" if m["mapping"] == "indirect" else m["mapping"]
+        cells = [f"{m['E_mm']:.2f}"] + [f"{m['P'][e]:.3f}" for e in ("5", "10", "25")] + \
+                [f"{m['T'][e]:.1f}" if e != "25" else f"{m['T'][e]:.2f}" for e in ("5", "10", "25")] + \
+                [f"{m['D'][e]:.3f}" for e in ("5", "10", "25")] + [f"{m['capped']} / {m['trials'] * m['targets']}"]
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    return lines + ["| thesis, indirect (Webots) | ≈ 3 | | | > 0.9 | | | ≈ 9 | | | < 0.09 | |",
+                    "| thesis, direct (Webots) | ≈ 8 | | | < 0.9 | | | ≈ 17.5 | | | ≈ 0.18 | |"]
+
+
+@dataclass(frozen=True)
+class Table:
+    name: str
+    render: Callable[[], list[str]]
+
+
+TABLES = {t.name: t for t in (Table("ch61", ch61_table), Table("ch62", ch62), Table("compare", compare_short),
+                              Table("compare-intervals", compare_long), Table("generalisation", generalisation),
+                              Table("generalisation-thesis", generalisation_thesis))}
+
+BLOCK = re.compile(r"(<!-- table: (?P<name>[a-z0-9-]+) -->\n)(?P<body>.*?)(<!-- end table -->)", re.S)
+
+
+def update(text: str, rendered: dict[str, str]) -> str:
+    """``text`` with every marked table whose name is in ``rendered`` replaced by its rendering."""
+    def put(m):
+        name = m.group("name")
+        if name not in rendered:
+            return m.group(0)
+        return m.group(1) + rendered[name] + m.group(4)
+    return BLOCK.sub(put, text)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("names", nargs="*", help=f"tables to make (default all: {', '.join(TABLES)})")
+    parser.add_argument("--check", action="store_true", help="write nothing; exit 1 if a page differs")
+    parser.add_argument("--cache", metavar="DIR", help="keep each command's result in DIR and reuse it (not with --check)")
+    args = parser.parse_args(argv)
+    if args.cache and args.check:
+        parser.error("--cache: the check runs every command afresh")
+    global CACHE
+    CACHE = Path(args.cache) if args.cache else None
+    if CACHE:
+        CACHE.mkdir(parents=True, exist_ok=True)
+    unknown = [n for n in args.names if n not in TABLES]
+    if unknown:
+        parser.error(f"unknown table {unknown[0]!r} (tables: {', '.join(TABLES)})")
+    names = args.names or list(TABLES)
+    used = {m.group("name") for p in PAGES for m in BLOCK.finditer((ROOT / p).read_text())}
+    rendered = {n: "\n".join(TABLES[n].render()) + "\n" for n in names if n in used}
+    differ = []
+    for page in PAGES:
+        path = ROOT / page
+        old = path.read_text()
+        new = update(old, rendered)
+        if new != old:
+            differ.append(page)
+            if not args.check:
+                path.write_text(new)
+    for page in differ:
+        print(f"{'differs' if args.check else 'rewrote'}: {page}")
+    return 1 if (args.check and differ) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
