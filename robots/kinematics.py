@@ -117,7 +117,7 @@ def advance_pose(state: RobotState, setpoint, noise, n: int, params: RobotParams
     """:func:`advance`'s new state alone, for training's hot loop, which needs only the pose at the end of the
     period: no trace, the sub-steps' displacements summed rather than accumulated, and in JAX the headings'
     sines and cosines from :func:`robots.trig.sincos`. The end position can differ from :func:`advance`'s
-    in the last bits (within 1e-6 m, ``tests/test_kinematics.py``); heading and wheels are the same."""
+    in the last bits (within 1e-6 m, ``tests/robots/test_kinematics.py``); heading and wheels are the same."""
     dx, dy, heading, wheels = _substeps(state, setpoint, noise, n, params, xp, partial(sincos, xp=xp))
     # Both sums in one reduction: as two, XLA would evaluate the sub-steps' motion (lag, slip, sines,
     # cosines) once for each.

@@ -22,7 +22,7 @@ LIMIT = 8192.0  # Cephes' bound for |a|; training's headings stay within a few t
 def sincos(a, xp=np):
     """``(sin a, cos a)``. NumPy arrays get NumPy's own functions (the float64 references and the pymunk
     world); ``jax.numpy`` arrays the polynomials, within 1e-7 of the float64 values for |a| ≤ :data:`LIMIT`
-    (``tests/test_trig.py``). NaN and ±∞ give NaN, as ``sin`` and ``cos`` do.
+    (``tests/robots/test_trig.py``). NaN and ±∞ give NaN, as ``sin`` and ``cos`` do.
 
     ``|a|`` is reduced to ``z = |a| - jπ/4`` with j even, ``|z| ≤ π/4``; j/2 mod 4 says which of ±sin z,
     ±cos z each result is, and sin is odd in a.

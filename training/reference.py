@@ -2,7 +2,7 @@
 baseline of ``benchmarks/`` (docs/design.md §7).
 
 Written independently of the JAX code (no ``jax`` import here): the same equations, spelled out on
-NumPy arrays in float64, one trial at a time. ``tests/test_reference.py`` holds the jitted JAX step equal
+NumPy arrays in float64, one trial at a time. ``tests/training/test_reference.py`` holds the jitted JAX step equal
 to it to 1e-5; ``benchmarks/perf/bench_training.py`` times both.
 """
 

@@ -1,4 +1,4 @@
-"""Cells and planning time of slippery cells vs. quadtree vs. uniform grid (thesis ch. 3.2.2, DESIGN §4).
+"""Cells and planning time of slippery cells vs. quadtree vs. uniform grid (thesis ch. 3.2.2, docs/design.md §4).
 
 Run from the repository root::
 

@@ -1,4 +1,4 @@
-"""How fast scenario runs go (DESIGN §5, §6; thesis ch. 6.2), and where the time of a 0.128 s tick goes.
+"""How fast scenario runs go (docs/design.md §5, §6; thesis ch. 6.2), and where the time of a 0.128 s tick goes.
 
 Run from the repository root (about four minutes on 2 cores with the defaults)::
 

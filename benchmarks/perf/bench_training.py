@@ -1,4 +1,4 @@
-"""How fast online EKM training runs (DESIGN §7): JAX vs NumPy, neurons, trials, the whole ch. 6.1 protocol.
+"""How fast online EKM training runs (docs/design.md §7): JAX vs NumPy, neurons, trials, the whole ch. 6.1 protocol.
 
 Run from the repository root (takes a few minutes on 2 cores)::
 

@@ -1,4 +1,4 @@
-"""Where one online training step's time goes (DESIGN §7): timing ablations of ``training.online.train_step``.
+"""Where one online training step's time goes (docs/design.md §7): timing ablations of ``training.online.train_step``.
 
 Run from the repository root (about a minute on 2 cores)::
 

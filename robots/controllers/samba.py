@@ -31,7 +31,7 @@ Every 0.128 s tick, :func:`maps` (pure; :func:`step` is it jitted, plus the whee
    weight curve, w^(1/(1 + tie))), so a jump to another direction needs a clearly better action. When the
    checkpoint lies straight behind an obstacle, left and right tie, and as the robot turns, the grid's
    directions move under the tie: without hysteresis the winner flips side tick after tick and the robot
-   turns on the spot, losing time (``tests/test_samba.py`` has such a world). The chosen direction is refined
+   turns on the spot, losing time (``tests/robots/controllers/test_samba.py`` has such a world). The chosen direction is refined
    between its neighbours by a parabola through their weights (the grid is 5° coarse, which misses a
    checkpoint 20 cm ahead by up to 9 mm). No positive action: the robot stops (§3.1: "only positive weights
    cause actions to be performed").

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import difflib
+import importlib.util
 import json
 import os
 import subprocess
@@ -28,10 +29,40 @@ from pathlib import Path
 
 from mutmut import Context, list_mutations, mutate
 
-# module -> the fast tests that exercise it (directly or through the code that calls it); new known-answer
-# files first, so that a killed mutant usually stops (-x) on the cheapest test. tests/test_training.py (two
-# 30,000-step training runs, ~200 s a call on the shared 2-core machine) is left out: see docs/mutation.md.
+# the controller tests that drive the shipped EKM (split by controller module)
+CONTROLLER_TESTS = ["robots/controllers/test_braitenberg.py", "robots/controllers/test_base.py",
+                    "robots/controllers/test_fusion.py", "robots/controllers/test_fields.py",
+                    "robots/controllers/test_memory.py", "robots/controllers/test_spec.py"]
+
+# module -> the fast tests that exercise it (directly or through the code that calls it), as paths under tests/;
+# known-answer tests first, so that a killed mutant usually stops (-x) on the cheapest test. The training runs of
+# tests/training/test_run.py (two 30,000-step runs, ~200 s a call on the shared 2-core machine) are left out: see
+# docs/mutation.md.
 MODULES = {
+    "evaluation/metrics.py": ["evaluation/test_metrics.py", "evaluation/test_protocol.py", "ekm/test_data.py"],
+    "evaluation/protocol.py": ["evaluation/test_metrics.py", "evaluation/test_protocol.py", "ekm/test_data.py"],
+    "training/schedules.py": ["training/test_schedules.py", "training/test_online.py", "ekm/test_data.py",
+                              "training/test_reference.py"],
+    "training/online.py": ["training/test_online.py", "ekm/test_data.py", "training/test_reference.py"],
+    "planner/checkpoints.py": ["planner/test_checkpoints.py", "planner/test_search.py", "planner/test_graph.py",
+                               "planner/test_plan.py"],
+    "planner/slippery.py": ["planner/test_slippery.py", "planner/test_quadtree.py", "planner/test_graph.py",
+                            "planner/test_checkpoints.py", "planner/test_search.py", "planner/test_plan.py"],
+    "planner/search.py": ["planner/test_search.py", "planner/test_graph.py", "planner/test_checkpoints.py",
+                          "planner/test_plan.py"],
+    "ekm/kohonen.py": ["ekm/test_kohonen.py", "ekm/test_charts.py", "ekm/test_indirect.py", "ekm/test_direct.py",
+                       "ekm/test_maps.py", "ekm/test_config.py", *CONTROLLER_TESTS],
+    "ekm/charts.py": ["ekm/test_kohonen.py", "ekm/test_charts.py", "ekm/test_indirect.py", "ekm/test_direct.py",
+                      "ekm/test_maps.py", "ekm/test_config.py", *CONTROLLER_TESTS],
+    "ekm/indirect.py": ["ekm/test_kohonen.py", "ekm/test_charts.py", "ekm/test_indirect.py", "ekm/test_direct.py",
+                        "ekm/test_maps.py", "ekm/test_config.py", *CONTROLLER_TESTS],
+    "ekm/direct.py": ["ekm/test_kohonen.py", "ekm/test_charts.py", "ekm/test_indirect.py", "ekm/test_direct.py",
+                      "ekm/test_maps.py", "ekm/test_config.py", *CONTROLLER_TESTS],
+}
+
+# The same lists in the flat tests/ of the commits before the tests mirrored the packages (3b8e0bf and its
+# successors up to the move): used for a clone that has none of the files above.
+FLAT_MODULES = {
     "evaluation/metrics.py": ["test_metrics_known.py", "test_protocol_known2.py", "test_shipped_maps.py"],
     "evaluation/protocol.py": ["test_metrics_known.py", "test_protocol_known2.py", "test_shipped_maps.py"],
     "training/schedules.py": ["test_schedules_known.py", "test_training_known.py", "test_shipped_maps.py",
@@ -63,9 +94,24 @@ def mutants(root: Path, module: str):
         yield i, mid, mutated, diff
 
 
+def tests_in(root: Path, module: str) -> list[str]:
+    """The module's test files present in the clone: in its package-mirroring tests/, else in a flat one."""
+    for table in (MODULES, FLAT_MODULES):
+        tests = [f"tests/{t}" for t in table[module] if (root / "tests" / t).exists()]
+        if tests:
+            return tests
+    return []
+
+
+def serial() -> list[str]:
+    """pytest options for one process: the default run spreads files over xdist workers (-n auto), which would
+    start workers for every mutant and lose the cheapest-test-first order that -x relies on."""
+    return ["-n", "0"] if importlib.util.find_spec("xdist") else []
+
+
 def run_tests(root: Path, tests: list[str], timeout: float) -> tuple[str, float]:
     env = dict(os.environ, PYTHONPATH=str(root), PYTHONDONTWRITEBYTECODE="1")
-    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-p", "no:randomly", *tests]
+    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-p", "no:randomly", *serial(), *tests]
     t0 = time.monotonic()
     try:
         proc = subprocess.run(cmd, cwd=root, env=env, capture_output=True, timeout=timeout)
@@ -137,7 +183,7 @@ def main(argv=None):
     if args.out and args.out.exists():
         done = {json.loads(line)["id"] for line in args.out.read_text().splitlines() if line.strip()}
     for module in args.modules:
-        tests = [f"tests/{t}" for t in MODULES[module] if (root / "tests" / t).exists()]
+        tests = tests_in(root, module)
         path = root / module
         original = path.read_text()
         try:

@@ -1,0 +1,21 @@
+"""``ekm bench`` from the command line (docs/design.md §6)."""
+
+import json
+
+import pytest
+
+from ekm.cli import main
+
+
+def run_cli(capsys, *argv):
+    code = main([str(a) for a in argv])
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+def test_bench_reports_jax_and_numpy_throughput(capsys):
+    code, stdout, _ = run_cli(capsys, "bench", "--json")
+    assert code == 0
+    r = json.loads(stdout)
+    assert r["jax_trial_steps_per_s"] > 0 and r["numpy_trial_steps_per_s"] > 0
+    assert r["ratio"] == pytest.approx(r["jax_trial_steps_per_s"] / r["numpy_trial_steps_per_s"], rel=0.01)

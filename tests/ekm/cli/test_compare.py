@@ -1,0 +1,53 @@
+"""``ekm compare`` from the command line: the same JSON on any number of workers, and one-line errors before
+any run starts."""
+
+import json
+
+import pytest
+
+from ekm.cli import main
+
+
+def cli(capsys, *argv):
+    code = main([str(a) for a in argv])
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+ARGS = ["compare", "--worlds", "open-arena,three-rooms", "--architectures", "fusion,fields:form=thesis",
+        "--trials", "2", "--time-limit", "40", "--json"]
+
+
+def strip(doc):
+    return {k: v for k, v in doc.items() if k not in ("seconds", "workers")}
+
+
+def test_one_worker_or_two_give_the_same_json(capsys):
+    code1, out1, err1 = cli(capsys, *ARGS, "--workers", "1")
+    code2, out2, _ = cli(capsys, *ARGS, "--workers", "2")
+    assert code1 == code2 == 0 and err1 == ""
+    one, two = json.loads(out1), json.loads(out2)
+    assert strip(one) == strip(two)
+    assert [(r["world"], r["architecture"]) for r in one["results"]] == [
+        ("open-arena", "fusion"), ("three-rooms", "fusion"), ("open-arena", "fields:form=thesis"),
+        ("three-rooms", "fields:form=thesis")]
+    assert one["results"][0]["success_rate"] == 1.0 and one["ekm_version"] and one["trials"] == 2
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--worlds", "open-arena,nowhere", "--architectures", "fusion"], "nowhere: no such world file or named world"),
+    (["--worlds", "open-arena", "--architectures", "fusion,sambo"], "architecture 'sambo': unknown"),
+    (["--worlds", "open-arena", "--architectures", "fusion:beta=3"], "architecture fusion: beta must be in (0, 1]"),
+    (["--worlds", "open-arena", "--architectures", "fields:colour=red"], "architecture fields: unknown parameter 'colour'"),
+    (["--worlds", "open-arena,open-arena", "--architectures", "fusion"], "a world is named twice"),
+    (["--worlds", "open-arena", "--architectures", "fusion,fusion"], "an architecture is named twice"),
+    (["--worlds", "open-arena", "--architectures", "fusion", "--trials", "0"], "--trials: must be > 0"),
+    (["--worlds", "open-arena", "--architectures", "fusion", "--map", "missing.npz"], "missing.npz: no such map file"),
+    (["--worlds", "open-arena", "--architectures", "fusion", "--plot", "x.jpg"], "expected a file name ending in .png"),
+])
+def test_bad_input_is_one_line_before_any_run(capsys, monkeypatch, argv, message):
+    import evaluation.compare as comparison
+
+    monkeypatch.setattr(comparison, "run_job", lambda job: pytest.fail("a run started"))
+    code, out, err = cli(capsys, "compare", *argv)
+    assert code == 2 and out == "" and message in err and err.count("\n") == 1

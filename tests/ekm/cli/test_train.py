@@ -1,0 +1,72 @@
+"""``ekm train`` from the command line (docs/design.md §6): its JSON, its maps, the same numbers from ``ekm evaluate``,
+and one-line errors for bad arguments of either command."""
+
+import json
+
+import numpy as np
+import pytest
+
+from ekm.cli import main
+from ekm.mapfile import load_maps
+
+TRAIN_KEYS = {"mapping", "neurons", "steps", "trials", "seconds", "curve", "out"}
+
+
+def run_cli(capsys, *argv):
+    code = main([str(a) for a in argv])
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
+    d, out, plot = trained
+    capsys.readouterr()  # the fixture's own output
+    code, stdout, _ = run_cli(capsys, "train", "--mapping", "indirect", "--neurons", "8", "--steps", "1500",
+                              "--trials", "2", "--eval-every", "500", "--eval-targets", "10", "--out", d / "again.npz",
+                              "--json")
+    assert code == 0
+    result = json.loads(stdout)
+    assert TRAIN_KEYS <= set(result)
+    assert [p["step"] for p in result["curve"]] == [0, 500, 1000, 1500]
+    assert set(result["curve"][0]) >= {"step", "E_mm", "P", "T", "D"}
+    assert out.stat().st_size > 0 and plot.stat().st_size > 10_000
+    assert np.array_equal(load_maps(out).ekm.M, load_maps(d / "again.npz").ekm.M)  # the same seed, the same maps
+    code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "10", "--json")
+    assert code == 0
+    ev = json.loads(stdout)
+    assert list(ev)[:7] == ["E_mm", "P", "T", "D", "trials", "targets", "capped"]  # docs/design.md §6, then provenance
+    assert ev["seed"] == 0 and ev["ekm"]["neurons"] == 8 and ev["trained"]["seed"] == 0 and ev["ekm_version"]
+    assert result["seed"] == 0 and result["ekm"]["mapping"] == "indirect" and result["train"]["steps"] == 1500
+    assert result["jax_version"] and result["ekm_version"] and result["test"] == {"targets": 10, "seed": 0}
+    assert set(ev["P"]) == {"5", "10", "25"} and ev["trials"] == 2 and ev["targets"] == 10
+    last = result["curve"][-1]
+    assert ev["E_mm"] == last["E_mm"] and ev["P"] == last["P"] and ev["T"] == last["T"] and ev["D"] == last["D"]
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["train", "--mapping", "both", "--out", "x.npz"], "invalid choice"),
+    (["train", "--mapping", "direct", "--steps", "0", "--out", "x.npz"], "must be > 0"),
+    (["train", "--mapping", "direct", "--trials", "two", "--out", "x.npz"], "whole number"),
+    (["train", "--mapping", "direct", "--neurons", "1", "--out", "x.npz"], "neurons must be >= 2"),
+    (["train", "--mapping", "direct", "--neurons", "5", "--priority", "26", "--out", "x.npz"], "priority must be in 1..25"),
+    (["train", "--mapping", "direct", "--priority", "0", "--out", "x.npz"], "must be > 0"),
+    (["train", "--mapping", "direct", "--chart", "cartesian", "--out", "x.npz"], "invalid choice: 'cartesian'"),
+    (["train", "--mapping", "direct"], "--out"),
+    (["train", "--mapping", "direct", "--out", "x.txt"], "ending in .npz"),
+    (["train", "--mapping", "direct", "--out", "x.npz", "--world", "three-rooms"], "obstacle-free"),
+    (["train", "--mapping", "direct", "--out", "x.npz", "--world", "nowhere"], "no such world"),
+    (["evaluate", "missing.npz"], "no such map file"),
+    (["evaluate"], "required"),
+    (["evaluate", "missing.npz", "--paths", "paths.jpg"], "ending in .png"),
+])
+def test_bad_arguments_give_one_line_and_status_2(capsys, tmp_path, monkeypatch, argv, message):
+    monkeypatch.chdir(tmp_path)
+    code, stdout, stderr = run_cli(capsys, *argv)
+    assert code == 2
+    assert message in stderr and stderr.count("\n") == 1 and stdout == ""
+    assert not (tmp_path / "x.npz").exists()
+
+
+def test_output_directory_is_refused_before_training(capsys, tmp_path):
+    code, _, stderr = run_cli(capsys, "train", "--mapping", "direct", "--out", tmp_path)
+    assert code == 2 and "is a directory" in stderr

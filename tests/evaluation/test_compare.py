@@ -1,0 +1,95 @@
+"""Comparing architectures (evaluation.compare): the runs, their intervals, the same results on Dask as in
+local processes; and issue 21's targets on the generated test worlds (slow)."""
+
+import pytest
+
+from evaluation.compare import Job, compare, jobs, run_job, summarize, wilson
+from evaluation.scenario import ScenarioConfig
+from robots.controllers.spec import parse_architectures
+
+QUICK = ScenarioConfig(time_limit=20.0)
+
+
+def test_wilson_intervals_match_the_textbook_values():
+    assert wilson(0, 10) == pytest.approx((0.0, 0.2775), abs=1e-4)
+    assert wilson(10, 10) == pytest.approx((0.7225, 1.0), abs=1e-4)
+    assert wilson(5, 10) == pytest.approx((0.2366, 0.7634), abs=1e-4)
+    assert wilson(9, 10) == pytest.approx((0.5958, 0.9821), abs=1e-4)
+    assert wilson(0, 0) == (0.0, 1.0)
+
+
+def test_trial_i_runs_with_seed_plus_i_for_every_architecture_and_world():
+    specs = parse_architectures("fusion,fields:form=thesis")
+    job_list = jobs(["open-arena", "three-rooms"], specs, 3, 7, QUICK, keep_paths=True)
+    assert len(job_list) == 2 * 2 * 3
+    assert [j.seed for j in job_list[:6]] == [7, 7, 8, 8, 9, 9] and {j.seed for j in job_list} == {7, 8, 9}
+    assert [j.label for j in job_list[:2]] == ["fusion", "fields:form=thesis"]
+    assert [j.world for j in job_list[::6]] == ["open-arena", "three-rooms"]  # world by world
+    assert [j.keep_path for j in job_list[:6]] == [True, True, False, False, False, False]
+
+
+def test_summary_rows_carry_design_keys_means_of_successes_and_intervals():
+    records = [{"label": "a", "given": "w", "world": "w", "trial": i, "reached": i < 3, "trapped": i == 3,
+                "arrived": i < 3, "ended": "x", "time_s": 10.0 + i, "path_m": 1.0, "collisions": int(i == 4),
+                "contact_s": 0.25 * (i == 4)}
+               for i in range(5)]
+    (row,) = summarize(records, ["w"], ["a"])
+    assert list(row)[:9] == ["world", "architecture", "trials", "success_rate", "success_ci95", "mean_time_s",
+                             "mean_path_m", "collisions", "trapped"]
+    assert row["success_rate"] == 0.6 and row["mean_time_s"] == 11.0 and row["trapped"] == 1
+    assert row["collisions"] == 1 and row["success_ci95"] == pytest.approx(wilson(3, 5), abs=1e-4)
+    assert row["runs_by_trial"] == "RRRTL" and row["contact_s"] == 0.25 and row["failed"] == 0
+
+
+def test_a_job_is_a_pure_function_of_its_fields():
+    job = Job(world="open-arena", architecture=str(parse_architectures("fusion")[0]), label="fusion", trial=0,
+              seed=3, config=QUICK, keep_path=True)
+    a, b = run_job(job), run_job(job)
+    assert a == b and a["reached"] and a["seed"] == 3 and len(a["path"]) > 10
+
+
+def test_a_dask_local_cluster_gives_the_same_runs_as_local_processes():
+    distributed = pytest.importorskip("distributed")
+    specs = parse_architectures("fusion,fields")
+    job_list = jobs(["open-arena", "three-rooms-static"], specs, 2, 0, QUICK)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            on_dask = compare(job_list, client.get_executor(pure=False))
+    assert on_dask == compare(job_list)  # run for run
+
+
+# ------------------------------------------------------------------------------------ generalisation (slow)
+
+# Issue 21's targets on the generated test worlds (seeds 1000-1019 of each family, never tuned on). The
+# thresholds are the issue's, not numbers the code produced: the default neural fields reach the goal
+# without a collision in at least 85 % of the 120 worlds and 70 % of every family's 20, and in every family
+# the best architecture reaches at least 90 %.
+
+FAMILIES = ("corridor", "traps", "clutter", "maze", "movers", "blocked")
+
+
+@pytest.fixture(scope="module")
+def table():
+    import ekm
+
+    return ekm.compare(suite=",".join(f"{f}:20" for f in FAMILIES), trials=1, workers=2)
+
+
+@pytest.mark.slow
+def test_the_default_fields_reach_85_percent_overall_and_70_percent_in_every_family(table):
+    rows = {r["family"]: r for r in table.families if r["architecture"] == "fields"}
+    assert rows["all"]["success_rate"] >= 0.85, rows["all"]
+    for f in FAMILIES:
+        assert rows[f]["worlds"] == 20 and rows[f]["success_rate"] >= 0.70, rows[f]
+
+
+@pytest.mark.slow
+def test_in_every_family_the_best_architecture_reaches_90_percent(table):
+    for f in FAMILIES:
+        best = max(r["success_rate"] for r in table.families if r["family"] == f)
+        assert best >= 0.90, f
+
+
+@pytest.mark.slow
+def test_no_generated_world_fails_to_start(table):
+    assert all(r["failed"] == 0 for r in table.families)

@@ -1,0 +1,103 @@
+"""Neural fields (robots.controllers.fields, Eq. 5.1–5.6), and the extended form's commitment and guard."""
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+from ekm import indirect
+from ekm.config import EKMConfig
+from robots.controllers import fields
+from robots.params import KHEPERA, LONG_RANGE
+from tests.robots.controllers.observations import observation
+
+
+@pytest.mark.parametrize("form", fields.FORMS)
+def test_with_no_obstacle_sensed_the_fields_give_exactly_the_indirect_maps_command(signed_map, form):
+    ekm, cfg = signed_map
+    ctl = fields.build(fields.FieldParams(form=form), ekm, cfg)
+    state = ctl.init()
+    control = jax.jit(indirect.control, static_argnames="cfg")  # compiled as the fields' step is (same FMAs)
+    for target in [(0.3, 0.25), (-2.5, 0.08), (3.0, 0.6), (0.01, 0.003), (-0.9, 0.14)]:
+        obs = observation(np.full(12, np.inf), target=target)
+        state, c = ctl.step(state, obs)
+        expected, _ = control(ekm, jnp.asarray(target, jnp.float32), cfg)
+        # The same arithmetic, compiled inside a larger step: XLA may fuse it differently (last bit of float32).
+        np.testing.assert_allclose(np.asarray(c), np.asarray(expected), rtol=1e-6, atol=1e-9)
+
+
+def test_delta_d_stretches_the_obstacle_field_beyond_the_obstacle_and_not_before_it():
+    d_s = 0.06
+    assert float(fields.delta_d(d_s, d_s, 0.005)) == pytest.approx(1.0)
+    beyond = np.asarray(fields.delta_d(d_s, np.array([0.061, 0.08, 0.11]), 0.005))
+    assert np.all((0.02 < beyond) & (beyond < 0.1))  # 1 - gap**0.01 for 1 mm ... 5 cm
+    before = np.asarray(fields.delta_d(d_s, np.array([0.055, 0.05, 0.04]), 0.005))
+    assert before.tolist() == pytest.approx([2.0, 17.0, 257.0])  # 1 + (gap / tau)**4
+
+
+@pytest.mark.parametrize("form", fields.FORMS)
+def test_the_obstacle_field_inhibits_neurons_beyond_a_sensed_obstacle_along_its_direction_not_before(form):
+    """Eq. 5.6 on the regular initial lattice: one sensor straight ahead sees an obstacle 6 cm away."""
+    cfg = EKMConfig(neurons=15)
+    from ekm.kohonen import initial_weights
+
+    w = initial_weights(cfg)
+    ir = np.full(12, np.inf)
+    ir[0] = 0.06
+    p = fields.FieldParams(form=form)
+    if form == "thesis":
+        u_obs, seen = fields.obstacle_inputs(jnp.asarray(ir), jnp.asarray(LONG_RANGE.angles, jnp.float32))
+        winners = jax.vmap(lambda u: fields.winner(w, u, cfg))(u_obs)
+        b = np.asarray(fields.obstacle_field(w, winners, seen, p, cfg))
+    else:
+        u_obs = jnp.asarray([[0.0, 0.06]], jnp.float32)
+        b = np.asarray(fields.body_field(w, u_obs, jnp.asarray([True]), KHEPERA.radius, p, cfg))
+    w = np.asarray(w)
+    ahead = np.abs(w[:, 0]) < 0.25  # the lattice row straight ahead
+    assert np.all(b[ahead & (w[:, 1] >= 0.07)] > 0.5)  # beyond the obstacle: inhibited
+    assert np.all(b[ahead & (w[:, 1] <= 0.045)] < 0.05)  # before it: free
+    assert np.all(b[np.abs(w[:, 0]) > 2.0] < 1e-3)  # the other way: untouched
+
+
+def test_an_inhibited_target_makes_another_neuron_win_and_drive_to_its_own_displacement(signed_map):
+    """Eq. 5.4/5.5: a wall straight ahead between robot and target; the winner k != s and c = M_k w_k."""
+    ekm, cfg = signed_map
+    ctl = fields.build(fields.FieldParams(form="thesis"), ekm, cfg)
+    ir = np.full(12, np.inf)
+    ir[[11, 0, 1]] = 0.05
+    state, c = ctl.step(ctl.init(), observation(ir, target=(0.0, 0.4)))
+    k, s = int(state.k), int(state.s)
+    assert k != s
+    np.testing.assert_allclose(np.asarray(c), np.asarray(indirect.command(ekm, ekm.w[k], k, cfg)), rtol=1e-6)
+    assert abs(float(ekm.w[k, 0])) > 0.4  # it turns away from the obstacle
+
+
+def test_committed_robot_keeps_to_one_side_of_a_wall_across_ticks(signed_map):
+    """A wall across the way: the extended fields pick a side and keep it while the wall blocks the target."""
+    ekm, cfg = signed_map
+    ctl = fields.build(fields.FieldParams(), ekm, cfg)
+    state = ctl.init()
+    sides = []
+    for i, y in enumerate(np.linspace(0.0, 0.06, 8)):
+        pose = (0.5, 0.5 + y, 0.0)
+        ir = np.full(12, np.inf)
+        ir[[11, 0, 1]] = [0.09, 0.08, 0.09]  # wall 10.5 cm ahead, centre seen by three rays
+        state, _ = ctl.step(state, observation(ir, target=(0.0, 0.5), t=0.128 * i, pose=pose))
+        sides.append(float(state.side))
+    assert sides[0] != 0 and len(set(sides)) == 1
+
+
+def test_the_fields_guard_slows_the_wheels_to_half_a_second_from_what_is_ahead_and_keeps_the_turn():
+    """guard by hand: a remembered point 3 cm ahead of the body (d = 0.03, α = 0): forward speed at most
+    (0.03 − clearance / 2) / guard_s = (0.03 − 0.005) / 0.5 = 0.05 m/s; the command (0.10, 0.14) has v = 0.12
+    and turn 0.02, so it becomes (0.03, 0.07). The same point behind the robot does not slow it going forward,
+    and a command slow enough is left as it is, to the bit."""
+    p = fields.FieldParams()
+    u = jnp.asarray([[0.0, 0.03]], jnp.float32)
+    c = fields.guard(jnp.asarray([0.10, 0.14]), u, jnp.asarray([True]), 0.025, p)
+    np.testing.assert_allclose(np.asarray(c), [0.03, 0.07], atol=1e-7)
+    behind = jnp.asarray([[np.pi, 0.03]], jnp.float32)
+    np.testing.assert_array_equal(np.asarray(fields.guard(jnp.asarray([0.10, 0.14]), behind, jnp.asarray([True]),
+                                                          0.025, p)), np.float32([0.10, 0.14]))
+    slow = jnp.asarray([0.04, 0.05], jnp.float32)
+    np.testing.assert_array_equal(np.asarray(fields.guard(slow, u, jnp.asarray([True]), 0.025, p)), np.asarray(slow))
