@@ -21,6 +21,9 @@ function                               returns                     command line
 ``plan(world, start, goal, ...)``      :class:`Plan`               ``ekm plan``
 ``run(world, architecture, ...)``      :class:`Outcome`            ``ekm run``
 ``compare(worlds, architectures)``     :class:`Table`              ``ekm compare``
+``load_comparison(results)``           :class:`Table`              ``ekm compare --from``
+``architectures()``                    :class:`Architectures`      ``ekm architectures``
+``register_architecture(name, ...)``   (an architecture)           (entry points: ``ekm.architectures``)
 =====================================  ==========================  ==================================
 
 Each result is a frozen dataclass whose ``to_dict()`` is the command's ``--json`` output, with
@@ -40,7 +43,9 @@ _EXPORTS = {
     "generate": "ekm.api.worlds",
     "plan": "ekm.api.planning", "Plan": "ekm.api.planning",
     "run": "ekm.api.driving", "Outcome": "ekm.api.driving",
-    "compare": "ekm.api.comparing", "Table": "ekm.api.comparing",
+    "compare": "ekm.api.comparing", "Table": "ekm.api.comparing", "load_comparison": "ekm.api.comparing",
+    "architectures": "ekm.api.architectures", "Architectures": "ekm.api.architectures",
+    "register_architecture": "ekm.api.architectures", "Architecture": "ekm.api.architectures",
     "InputError": "ekm.errors", "Interrupted": "ekm.errors",
 }
 

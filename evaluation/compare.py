@@ -1,9 +1,9 @@
 """Comparing architectures at scale: every architecture × world × trial through the scenario runner.
 
 A comparison is a bag of independent runs (docs/design.md §5): a run is a pure function of
-(world, architecture, run seed, map), so the runs can go to any :class:`concurrent.futures.Executor` —
-a local process pool, or a Dask ``distributed`` cluster's executor — in any order, on any number of
-workers, and the results are the same. Trial ``i`` of a comparison started with ``seed`` runs with run
+(world, architecture, run seed, map), so the runs can go to any workers (:mod:`evaluation.workers`: this
+process, local processes, a Dask cluster) in any order, on any number of them, and run again where a
+worker died, and the results are the same. Trial ``i`` of a comparison started with ``seed`` runs with run
 seed ``seed + i`` in every world and for every architecture: the same noise streams for all of them
 (common random numbers), so differences between architectures are not differences of luck.
 
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import functools
 import math
-from concurrent.futures import Executor
+import sys
 from dataclasses import dataclass
 
 from evaluation.scenario import ScenarioConfig
@@ -37,9 +37,23 @@ class Job:
     config: ScenarioConfig
     map_path: str | None = None
     keep_path: bool = False
+    added: object = None  # an architecture added in Python (robots.controllers.spec.register): the worker adds it too
 
 
 _MAPS: dict = {}
+
+#: A run whose worker died is tried this many more times (on a fresh worker) before it is recorded as failed.
+RETRIES = 3
+
+
+def failed_record(job: Job, reason: str, world: str | None = None, family: str | None = None) -> dict:
+    """The record of a run that could not be made: ``failed`` (the one-line reason), ``reached`` False,
+    ``ended`` "failed", and the job's identity (``given`` world, ``label``, ``trial``, ``seed``)."""
+    return {"world": world or job.world, "architecture": job.architecture, "reached": False, "time_s": None,
+            "path_m": None, "collisions": 0, "checkpoints_reached": 0, "replans": 0, "trapped": False,
+            "final_distance_m": None, "contact_s": 0.0, "arrived": False, "recoveries": 0, "ended": "failed",
+            "failed": reason, "seed": job.seed, "label": job.label, "trial": job.trial, "given": job.world,
+            "family": family}
 
 
 def run_job(job: Job) -> dict:
@@ -47,28 +61,33 @@ def run_job(job: Job) -> dict:
     the ``given`` world spelling, the world's ``family`` (generated worlds; None otherwise) and, with
     ``keep_path``, ``path`` (the centre every 0.128 s, as lists).
 
-    A run that cannot start — a world the planner finds no route through at any cell — is a record too,
-    with ``failed`` (the one-line reason) and ``reached`` False: one bad world does not end a comparison."""
+    A run that cannot be made is a record too, never the end of a comparison: a world the planner finds no
+    route through at any cell, or any exception the run raises, gives :func:`failed_record` with the reason
+    in one line that names the world."""
     from ekm.errors import InputError
     from ekm.mapfile import load_maps
     from evaluation.scenario import run_architecture
-    from robots.controllers.spec import parse_architecture
-    spec = parse_architecture(job.architecture)
-    maps = None
-    if job.map_path and spec.uses_map:
-        if job.map_path not in _MAPS:  # one load per worker process, not one per run
-            _MAPS[job.map_path] = load_maps(job.map_path)
-        maps = _MAPS[job.map_path]
-    world = _world(job.world)
-    family = world_family(world)
+    from robots.controllers.spec import added, parse_architecture, register
+
+    world, family = None, None
     try:
+        if job.added is not None and added(job.added.name) is None:
+            register(job.added)
+        spec = parse_architecture(job.architecture)
+        maps = None
+        if job.map_path and spec.uses_map:
+            if job.map_path not in _MAPS:  # one load per worker process, not one per run
+                _MAPS[job.map_path] = load_maps(job.map_path)
+            maps = _MAPS[job.map_path]
+        world = _world(job.world)
+        family = world_family(world)
         rec = run_architecture(world, spec, maps, seed=job.seed, config=job.config, source=job.map_path or "")
-    except InputError as exc:
-        return {"world": world.name, "architecture": job.architecture, "reached": False, "time_s": None,
-                "path_m": None, "collisions": 0, "checkpoints_reached": 0, "replans": 0, "trapped": False,
-                "final_distance_m": None, "contact_s": 0.0, "arrived": False, "recoveries": 0,
-                "ended": "failed", "failed": str(exc), "seed": job.seed, "label": job.label, "trial": job.trial,
-                "given": job.world, "family": family}
+    except Exception as exc:
+        text = str(exc).splitlines()[0] if str(exc) else ""
+        reason = text if isinstance(exc, InputError) else f"{type(exc).__name__}: {text}".rstrip(": ")
+        if job.world not in reason:
+            reason = f"{job.world}: {reason}"
+        return failed_record(job, reason, world.name if world is not None else None, family)
     out = {**rec.outcome(), "label": job.label, "trial": job.trial, "given": job.world, "family": family}
     if job.keep_path:
         every = max(1, round(rec.period / (rec.times[1] - rec.times[0]))) if len(rec.times) > 1 else 1
@@ -94,24 +113,83 @@ def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path
          keep_paths: bool = False) -> list[Job]:
     """Every (architecture, world, trial) of a comparison, in a fixed order — world by world, so that a worker
     plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``."""
+    from robots.controllers.spec import added
+
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
-                map_path=map_path, keep_path=keep_paths and i == 0)
+                map_path=map_path, keep_path=keep_paths and i == 0, added=added(spec.name))
             for w in worlds for i in range(trials) for spec in specs]
 
 
-def compare(job_list: list[Job], executor: Executor | None = None, on_done=None) -> list[dict]:
-    """Run ``job_list`` on ``executor`` (in this process if None) and return their records in the jobs' order.
+def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | None = None,
+            retries: int = RETRIES) -> list[dict]:
+    """Run ``job_list`` on ``workers`` (:mod:`evaluation.workers`; in this process if None) and return their
+    records in the jobs' order, whatever order they finished in.
 
-    Any :class:`concurrent.futures.Executor` works — a local process pool, or a Dask cluster's
-    ``client.get_executor()`` — through its ``map``, one code path for both. ``on_done(record)`` is called
-    for each run as its result is taken (progress bars).
+    ``done``: ``{index: record}`` of runs already made (a resumed comparison): not run again.
+    ``on_done(index, record)`` is called for each run as it finishes (the results file, progress bars).
+    A run whose worker dies is run again on a fresh worker up to ``retries`` times, then recorded as failed
+    with the reason; a run that raises is recorded as failed (:func:`run_job`). Ctrl-C
+    (:mod:`ekm.interrupts`) raises KeyboardInterrupt here, between results; the caller stops the workers.
     """
-    results = []
-    for record in (map(run_job, job_list) if executor is None else executor.map(run_job, job_list)):
-        results.append(record)
+    from collections import deque
+    from concurrent.futures import FIRST_COMPLETED, wait
+
+    from ekm import interrupts
+    from evaluation.workers import InProcess
+
+    workers = workers or InProcess(run_job)
+    records: list = [None] * len(job_list)
+    for i, record in (done or {}).items():
+        records[i] = record
+    queue = deque(i for i in range(len(job_list)) if records[i] is None)
+    attempts = [0] * len(job_list)
+    flying: dict = {}
+
+    def finish(i: int, record: dict) -> None:
+        # one copy of each repeated string (world, architecture, label, ending) however many runs arrive
+        records[i] = {k: sys.intern(v) if isinstance(v, str) and k != "failed" else v for k, v in record.items()}
         if on_done:
-            on_done(record)
-    return results
+            on_done(i, record)
+
+    def settle(i: int, future) -> bool:
+        """Take a finished future's record, or put its run back in the queue; True if its worker died."""
+        exc = future.exception()
+        if exc is None:
+            finish(i, future.result())
+            return False
+        job = job_list[i]
+        if not workers.lost(exc):
+            finish(i, failed_record(job, f"{job.world}: {type(exc).__name__}: {exc}".splitlines()[0]))
+            return False
+        attempts[i] += 1
+        if attempts[i] <= retries:
+            queue.appendleft(i)
+        else:
+            finish(i, _lost_record(job, f"its worker died {attempts[i]} times ({type(exc).__name__})"))
+        return True
+
+    while queue or flying:
+        interrupts.check()
+        while queue and len(flying) < workers.window:
+            i = queue.popleft()
+            flying[workers.submit(job_list[i])] = i
+        finished, _ = wait(flying, timeout=0.5, return_when=FIRST_COMPLETED)
+        lost = [settle(flying.pop(future), future) for future in finished]
+        if any(lost) and workers.breaks_whole:
+            # a local pool breaks with its worker: every run it had in flight fails too; take them, renew it
+            for future in wait(flying).done:
+                settle(flying.pop(future), future)
+            workers.renew()
+    return records
+
+
+def _lost_record(job: Job, reason: str) -> dict:
+    """A failed record for a run whose worker kept dying (the world read here, for its name and family)."""
+    try:
+        world = _world(job.world)
+        return failed_record(job, f"{job.world}: {reason}", world.name, world_family(world))
+    except Exception:
+        return failed_record(job, f"{job.world}: {reason}")
 
 
 def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:

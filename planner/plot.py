@@ -48,6 +48,20 @@ def cell_sites(labels: np.ndarray, cell: float) -> np.ndarray:
     return sites
 
 
+def route_through_cells(plan: Plan) -> np.ndarray | None:
+    """The shortest path ``(n, 2)`` from start to goal over the free bitmap cells of the plan's route — what the
+    robot is led along, crossing from cell to cell through their shared edges, never through a wall (the
+    thesis's checkpoints are joined by straight legs that may cross one: :class:`planner.plan.Plan`)."""
+    from planner.visibility import route_path
+
+    found = route_path(plan.bitmap, plan.labels, plan.route, plan.cell, plan.start, plan.goal, ())
+    return None if found is None else found[0]
+
+
+def polyline_length(points: np.ndarray) -> float:
+    return float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
+
+
 def draw_plan(ax, plan: Plan, world=None, t: float = 0.0) -> None:
     """Draw ``plan`` (and, if given, the walls and known obstacles of ``world`` at ``t``) on ``ax``."""
     from matplotlib.collections import LineCollection
@@ -72,7 +86,12 @@ def draw_plan(ax, plan: Plan, world=None, t: float = 0.0) -> None:
     ax.plot(*sites[1:].T, ".", color="0.15", ms=3 if plan.cells < 200 else 1, zorder=3)
 
     path = np.vstack([np.asarray(plan.start)[None], plan.checkpoints])
-    ax.plot(*path.T, "-", color="crimson", lw=2, zorder=4, label=f"checkpoint path {plan.length:.2f} m")
+    legs = "straight legs, through the free space" if plan.rule == "visible" else "straight legs, may cross walls"
+    ax.plot(*path.T, "-", color="crimson", lw=2, zorder=4, label=f"checkpoint path {plan.length:.2f} m ({legs})")
+    through = route_through_cells(plan)
+    if through is not None and plan.rule != "visible":
+        ax.plot(*through.T, "--", color="0.1", lw=1.0, zorder=4,
+                label=f"route through the cells {polyline_length(through):.2f} m (their shared edges)")
     ax.plot(*plan.checkpoints[:-1].T, "o", mfc="white", mec="crimson", mew=1.5, ms=7, zorder=5,
             label=f"checkpoints ({len(plan.checkpoints) - 1} + goal)")
     ax.text(*plan.start, "X", color="k", fontsize=12, fontweight="bold", ha="center", va="center", zorder=6)

@@ -270,9 +270,11 @@ class _Checker:
             self.fail(key, f"must be >= 0, got {value}")
         return float(value)
 
-    def vector(self, value, key: str, n: int, **kw) -> tuple[float, ...]:
+    def vector(self, value, key: str, n: int, form: str | None = None, **kw) -> tuple[float, ...]:
+        """``n`` numbers; ``form`` says what they are (``"[x, y, θ] (m, m, rad)"``; default ``[x, y]`` in m)."""
         if not isinstance(value, list) or len(value) != n:
-            self.fail(key, f"must be a list of {n} numbers, got {json.dumps(value)}")
+            form = form or ("[x, y] (m)" if n == 2 else f"a list of {n} numbers")
+            self.fail(key, f"must be {form}, got {json.dumps(value)}")
         return tuple(self.number(v, f"{key}[{i}]", **kw) for i, v in enumerate(value))
 
     def integer(self, value, key: str) -> int:
@@ -300,15 +302,21 @@ class _Checker:
             self.fail(key, f"must be true or false, got {json.dumps(value)}")
         return value
 
+    def typed(self, value, key: str, types: tuple[str, ...]) -> None:
+        """A missing ``type`` names the types there are."""
+        if isinstance(value, dict) and "type" not in value:
+            self.fail(_join(key, "type"), f"missing (one of {', '.join(types)})")
+
     def shape(self, value, key: str, relative: bool = False) -> Shape:
         """A shape; ``relative`` shapes (carried by a path) may omit their centre."""
+        self.typed(value, key, ("box", "circle", "polygon", "segment"))
         kind = self.string(self.obj(value, key, ("type",), _SHAPE_KEYS)["type"], _join(key, "type"),
                            ("box", "circle", "polygon", "segment"))
         center_req = () if relative else ("center",)
         if kind == "box":
             v = self.obj(value, key, ("type", "size") + center_req, ("center", "angle"))
             return Box(self.vector(v.get("center", [0, 0]), _join(key, "center"), 2),
-                       self.vector(v["size"], _join(key, "size"), 2, positive=True),
+                       self.vector(v["size"], _join(key, "size"), 2, "[width, height] (m)", positive=True),
                        self.number(v.get("angle", 0.0), _join(key, "angle")))
         if kind == "circle":
             v = self.obj(value, key, ("type", "radius") + center_req, ("center",))
@@ -335,6 +343,7 @@ class _Checker:
         return seg
 
     def path(self, value, key: str) -> Path_:
+        self.typed(value, key, ("circle", "line"))
         kind = self.string(self.obj(value, key, ("type",), _PATH_KEYS)["type"], _join(key, "type"),
                            ("circle", "line"))
         if kind == "circle":
@@ -373,6 +382,9 @@ _WORLD_OPTIONAL = ("walls", "obstacles", "unforeseen", "moving", "events", "wall
 
 
 def _join(key: str, sub: str) -> str:
+    """The path of ``sub`` in ``key``; a key that is not printable (a newline in it) is quoted as JSON, so that
+    the message stays one line."""
+    sub = sub if sub.isprintable() else json.dumps(sub)
     return f"{key}.{sub}" if key else sub
 
 
@@ -381,11 +393,12 @@ def parse_world(doc, source: str = "<world>") -> World:
     ck = _Checker(source)
     ck.obj(doc, "", _WORLD_REQUIRED, _WORLD_OPTIONAL)
     name = ck.string(doc["name"], "name")
-    size = ck.vector(doc["size"], "size", 2, positive=True)
+    size = ck.vector(doc["size"], "size", 2, "[width, height] (m)", positive=True)
     thickness = ck.number(doc.get("wall_thickness", 0.01), "wall_thickness", nonneg=True)
     walls = []
     for i, w in enumerate(ck.list(doc.get("walls", []), "walls")):
-        x0, y0, x1, y1 = ck.vector(w, f"walls[{i}]", 4)
+        x0, y0, x1, y1 = ck.vector(w, f"walls[{i}]", 4, "[x0, y0, x1, y1] (m): a segment from (x0, y0) to (x1, y1), "
+                                                       "not a box; give a box as an obstacle")
         if (x0, y0) == (x1, y1):
             ck.fail(f"walls[{i}]", "wall has zero length")
         walls.append(Segment((x0, y0), (x1, y1)))
@@ -403,12 +416,12 @@ def parse_world(doc, source: str = "<world>") -> World:
         add = tuple(ck.shape(s, f"{key}.add[{j}]") for j, s in enumerate(ck.list(e["add"], f"{key}.add")))
         events.append(Event(ck.number(e["at_s"], f"{key}.at_s", nonneg=True), add,
                             ck.boolean(e.get("known", True), f"{key}.known")))
-    start = ck.vector(doc["start"], "start", 3)
+    start = ck.vector(doc["start"], "start", 3, "[x, y, θ] (m, m, rad: the heading, 0 = along +x)")
     if isinstance(doc["goal"], dict):
         ck.obj(doc["goal"], "goal", ("path",))
         goal = ck.path(doc["goal"]["path"], "goal.path")
     else:
-        goal = ck.vector(doc["goal"], "goal", 2)
+        goal = ck.vector(doc["goal"], "goal", 2, "[x, y] (m) or {\"path\": …} (a moving goal)")
     difficulty = ck.difficulty(doc["difficulty"], "difficulty") if "difficulty" in doc else None
 
     # Everything must lie inside the arena.

@@ -15,6 +15,7 @@ from functools import partial
 
 import jax
 
+from ekm import interrupts
 from ekm.config import EKMConfig
 from robots.params import KHEPERA, RobotParams
 from training.online import TrainConfig, start, train_chunk
@@ -130,6 +131,7 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
             trainees = chunk(trainees, keys, float(done), length=length, cfg=cfg, tcfg=tcfg, sharding=sharding,
                              params=params)
             done += length
+            interrupts.check()  # a Ctrl-C lost in a JAX callback stops training here
             if bar is not None:
                 jax.block_until_ready(trainees)
                 bar.update(length)

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import os
+import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ekm.api.checks import whole
 from ekm.api.result import Result
-from ekm.errors import InputError
+from ekm.errors import InputError, Interrupted
 
 _PROG = "ekm compare"
 
@@ -42,6 +42,10 @@ class Table(Result):
         out = {"results": [{k: v for k, v in r.items() if k != "runs_by_trial"} for r in self.rows]}
         if self.families:
             out["families"] = list(self.families)
+        failures = [{"world": r["given"], "architecture": r["label"], "trial": r["trial"], "seed": r["seed"],
+                     "reason": r["failed"]} for r in self.records if "failed" in r]
+        if failures:
+            out["failures"] = failures
         return {**out, "trials": self.trials, "seed": self.seed, "seconds": round(self.seconds, 2),
                 "runs": len(self.records), "workers": self.workers, "config": asdict(self.config), **provenance()}
 
@@ -105,7 +109,8 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
 def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None, world_seed: int = 1000,
             trials: int = 10, seed: int = 0, maps=None, recover: bool = True,
             time_limit: float = 120.0, checkpoints: str = "visible", cell: float | None = None,
-            workers: int | None = None, scheduler: str | None = None, progress: bool = False) -> Table:
+            workers: int | None = None, scheduler: str | None = None, out=None, resume=None,
+            progress: bool = False) -> Table:
     """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
     intervals (thesis ch. 6.2 at scale). Trial i runs with seed ``seed + i`` for every architecture and
     world (the same noise for all of them), so the result does not depend on ``workers`` or ``scheduler``.
@@ -142,14 +147,28 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
         ``if __name__ == "__main__":`` guard (a notebook does not).
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:8786``; needs ``ekm[cluster]``) to send the runs to.
+    out : path, optional
+        Results file (JSON Lines, :mod:`evaluation.results`): every finished run is appended and flushed as
+        it arrives, so a crash or Ctrl-C loses at most the runs in flight. Must not exist.
+    resume : path, optional
+        A results file of an earlier, unfinished call with the same arguments: only the missing runs are
+        made, and appended to it; the table is the same as an uninterrupted comparison's. A file made with
+        other arguments is refused.
     progress : bool, default False
-        Show a progress bar (runs done) on stderr.
+        Show a progress bar (runs done, failed, time left) on stderr.
 
     Returns
     -------
     Table
         Its ``to_dict()`` is ``ekm compare --json`` for the same arguments (but for ``seconds``, the wall
-        time).
+        time). A run that could not be made (its world has no route, it raised, its worker kept dying) is
+        in the table as failed, with its reason in ``records``; it never ends the comparison.
+
+    Raises
+    ------
+    ekm.Interrupted
+        On Ctrl-C or SIGTERM in the console script: the workers are stopped and the message says how many
+        runs the results file keeps and how to resume.
 
     Examples
     --------
@@ -162,7 +181,9 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
 
     from ekm.api.worlds import world as load_world
     from ekm.api.driving import scenario_config
-    from evaluation.compare import by_family, compare as run_all, jobs, summarize
+    from evaluation.compare import by_family, compare as run_all, jobs, run_job, summarize
+    from evaluation.results import key
+    from evaluation.workers import workers_for
     from robots.controllers.spec import parse_architectures
 
     trials = whole(trials, "--trials", _PROG, strict=True)
@@ -183,34 +204,134 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     labels = [s.label for s in specs]
     if len(set(labels)) != len(labels):
         raise InputError(f"--architectures {text!r}: an architecture is named twice")
-    map_path = _map_path(maps)
+    map_path = _map_path(maps, specs)
     job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True)
-    bar, on_done = None, None
-    if progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(job_list), unit="run", desc="comparing", dynamic_ncols=True)
-
-        def on_done(record):
-            bar.update(1)
-
-    executor, client = _executor(workers, scheduler)
+    settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)
+        "worlds": names, "architectures": [str(s) for s in specs], "labels": labels, "trials": trials, "seed": seed,
+        "config": asdict(config), "map": map_path, "ekm_version": _version()}))
+    pool = workers_for(run_job, workers, scheduler)
+    store = None
     t0 = time.perf_counter()
     try:
-        records = run_all(job_list, executor, on_done)
+        store = _results_file(out, resume, settings)
+        done = {}
+        if store is not None:
+            index = {key(j.world, j.label, j.trial): i for i, j in enumerate(job_list)}
+            done = {index[k]: r for k, r in store.done.items() if k in index}
+        with _Progress(len(job_list), done, progress) as bar:
+            def on_done(i, record):
+                if store is not None:
+                    store.append(_identity(job_list[i], map_path), record)
+                bar.update(record)
+
+            records = run_all(job_list, pool, on_done, done=done)
+    except KeyboardInterrupt:
+        try:
+            pool.stop()
+        except KeyboardInterrupt:  # a second Ctrl-C while the workers stop: they are stopping
+            pass
+        raise Interrupted(_stopped(store, len(job_list))) from None
     finally:
-        if bar is not None:
-            bar.close()
-        executor.shutdown(wait=True) if client is None else client.close()
+        if store is not None:
+            store.close()
+        pool.close()
     seconds = time.perf_counter() - t0
-    where = f"Dask at {scheduler}" if scheduler else f"{workers or os.cpu_count()} local workers"
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
-                 trials=trials, seed=seed, seconds=seconds, workers=where, config=config, records=tuple(records),
-                 families=tuple(by_family(records, labels)))
+                 trials=trials, seed=seed, seconds=seconds, workers=pool.where, config=config,
+                 records=tuple(records), families=tuple(by_family(records, labels)))
 
 
-def _map_path(maps) -> str | None:
-    """The map file the workers read: ``maps`` itself, or the file a :class:`ekm.Maps` came from (checked)."""
+def load_comparison(path) -> Table:
+    """The :class:`Table` of a finished comparison, from its results file alone (``ekm compare --from``):
+    the same rows, families and plot as the comparison that wrote it.
+
+    Raises :class:`ekm.InputError` if the file is not a results file or does not hold every run (then
+    ``ekm compare … --resume PATH`` finishes it)."""
+    from evaluation.compare import by_family, summarize
+    from evaluation.results import key, read
+    from evaluation.scenario import ScenarioConfig
+
+    settings, records = read(path)
+    names, labels, trials = settings["worlds"], settings["labels"], settings["trials"]
+    have = {key(r["given"], r["label"], r["trial"]): r for r in records}
+    want = [key(w, a, i) for w in names for i in range(trials) for a in labels]
+    missing = [k for k in want if k not in have]
+    if missing:
+        raise InputError(f"--from {path}: holds {len(want) - len(missing)} of the comparison's {len(want)} runs; "
+                         f"finish it with ekm compare … --resume {path}")
+    ordered = [have[k] for k in want]
+    return Table(rows=tuple(summarize(ordered, names, labels)), worlds=tuple(names), labels=tuple(labels),
+                 trials=trials, seed=settings["seed"], seconds=0.0, workers=f"results file {path}",
+                 config=ScenarioConfig(**settings["config"]), records=tuple(ordered),
+                 families=tuple(by_family(ordered, labels)))
+
+
+def _version() -> str:
+    from ekm import __version__
+
+    return __version__
+
+
+def _identity(job, map_path) -> dict:
+    """A run's job as the results file names it."""
+    return {"world": job.world, "architecture": job.architecture, "label": job.label, "trial": job.trial,
+            "seed": job.seed, "map": map_path, "ekm_version": _version()}
+
+
+def _results_file(out, resume, settings):
+    """The results file the runs go to (``out``: new; ``resume``: an earlier one continued), or None."""
+    from evaluation.results import ResultsFile
+
+    if out is not None and resume is not None:
+        raise InputError("--out and --resume: give one (--resume PATH appends to PATH)")
+    if out is not None:
+        return ResultsFile(out, settings, option="--out")
+    if resume is not None:
+        return ResultsFile(resume, settings, resume=True)
+    return None
+
+
+def _stopped(store, total: int) -> str:
+    """The line of an interrupted comparison: what was kept and how to go on."""
+    if store is None:
+        return "comparison stopped; no results file was written (--out RESULTS keeps every finished run)"
+    kept = len(store.done) + store.appended
+    return (f"comparison stopped; {kept} of {total} runs are in {store.path}; "
+            f"run the same command with --resume {store.path} to finish it")
+
+
+class _Progress:
+    """The progress bar of a comparison (runs done, failed, time left), or nothing."""
+
+    def __init__(self, total: int, done: dict, show: bool):
+        self.bar = None
+        self.failed = sum("failed" in r for r in done.values())
+        if show:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=total, initial=len(done), unit="run", desc="comparing", dynamic_ncols=True)
+            if self.failed:
+                self.bar.set_postfix(failed=self.failed)
+
+    def update(self, record: dict) -> None:
+        if self.bar is None:
+            return
+        if "failed" in record:
+            self.failed += 1
+            self.bar.set_postfix(failed=self.failed, refresh=False)
+        self.bar.update(1)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _map_path(maps, specs) -> str | None:
+    """The map file the workers read: ``maps`` itself, or the file a :class:`ekm.Maps` came from — checked,
+    and refused in one line for an architecture of ``specs`` that does not drive its chart."""
     from ekm.api.mapset import Maps, load
 
     if maps is None:
@@ -218,42 +339,10 @@ def _map_path(maps) -> str | None:
     if isinstance(maps, Maps):
         if maps.path is None:
             raise InputError("maps: ekm.compare sends the workers a map file; save the maps first (maps.save(PATH))")
-        return maps.path
-    load(maps)
-    return str(maps)
-
-
-def _executor(workers: int | None, scheduler: str | None):
-    """The executor the runs go to: a Dask cluster's (``scheduler``) or a local process pool."""
-    if scheduler:
-        try:
-            from distributed import Client
-        except ImportError:
-            raise InputError("--scheduler: Dask is not installed; pip install 'ekm[cluster]'") from None
-        try:
-            client = Client(scheduler, timeout="10s")
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(f"--scheduler {scheduler}: cannot connect ({exc.__class__.__name__}: {exc})") from None
-        return client.get_executor(pure=False), client
-    workers = workers or os.cpu_count() or 1
-    if workers == 1:  # one worker: this process (the same runs, as each is a pure function of its job)
-        return _InProcess(), None
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    from evaluation.pinning import pin_worker
-
-    # spawn, not fork: a forked JAX process can deadlock. Each worker runs on a CPU of its own (evaluation.pinning).
-    context = multiprocessing.get_context("spawn")
-    return ProcessPoolExecutor(workers, mp_context=context, initializer=pin_worker,
-                               initargs=(context.Value("i", 0),)), None
-
-
-class _InProcess:
-    """The executor of one local worker: :func:`evaluation.compare.compare` runs the jobs here."""
-
-    def map(self, fn, items):
-        return map(fn, items)
-
-    def shutdown(self, wait: bool = True) -> None:
-        pass
+        loaded, path = maps, maps.path
+    else:
+        loaded, path = load(maps), str(maps)
+    for spec in specs:
+        if spec.uses_map:
+            spec.check_map(loaded.cfg, path)
+    return path

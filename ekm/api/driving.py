@@ -160,16 +160,21 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         raise InputError(f"--map/--trial: architecture {spec.name} drives no map")
     if spec.uses_map:
         maps = load(maps, chart=spec.default_chart)
+        spec.check_map(maps.cfg, maps.source)
         if trial is not None and trial >= maps.trials:
             raise InputError(f"--trial {trial}: the map file holds trials 0..{maps.trials - 1}")
-    bar, on_tick = None, None
+    from ekm import interrupts
+
+    bar = None
     if progress:
         from tqdm import tqdm
 
         bar = tqdm(total=round(config.time_limit, 1), unit="sim s", desc=f"{spec.label} in {w.name}",
                    dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}]")
 
-        def on_tick(t):
+    def on_tick(t):
+        interrupts.check()  # a Ctrl-C lost in a JAX callback stops the run at the next tick
+        if bar is not None:
             bar.update(round(t, 3) - bar.n)
 
     try:

@@ -50,12 +50,22 @@ class Worlds(Result):
         return {"worlds": [w.counts() for w in self.items], **provenance(jax=False)}
 
     def save_plots(self, directory) -> list[Path]:
-        """Draw each world to scale to ``directory/NAME.png`` (created; each PNG written atomically); returns
-        the paths written."""
+        """Draw each world to scale to ``directory/NAME.png`` (created; each PNG written atomically) — or, for
+        one world and a path ending in ``.png``, to that file; returns the paths written."""
         import re
 
+        from ekm.api.checks import output_path
         from robots.plot import plot_world, save_figure
 
+        if str(directory).lower().endswith(".png"):
+            if len(self.items) != 1:
+                raise InputError(f"--plot {directory}: a PNG holds one world, and there are {len(self.items)}; "
+                                 f"give a directory")
+            out = output_path(directory, "--plot", ".png")
+            try:
+                return [save_figure(plot_world(self.items[0]).figure, out)]
+            except OSError as exc:
+                raise InputError(f"--plot {out}: cannot write ({exc.strerror or exc})") from None
         out = Path(directory)
         files = {}
         for w in self.items:

@@ -14,13 +14,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ekm.cli import bench, compare, evaluate, plan, run, train, worlds
+from ekm.cli import architectures, bench, compare, evaluate, plan, run, train, worlds
 from ekm.cli.args import (finite_float, nonneg_float, nonneg_int, output_path, positive_float, positive_int,
                           print_json, show_progress, xy_point)
 from ekm.errors import InputError, Interrupted
 
 #: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here.
-COMMANDS = (worlds, plan, train, evaluate, run, compare, bench)
+COMMANDS = (worlds, plan, train, evaluate, architectures, run, compare, bench)
 
 __all__ = ["COMMANDS", "build_parser", "main", "finite_float", "nonneg_float", "nonneg_int", "output_path",
            "positive_float", "positive_int", "print_json", "show_progress", "xy_point"]
@@ -45,18 +45,24 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """Run ``ekm ARGV…``; returns the exit status: 0, 2 for bad input, 130 (143 for SIGTERM) when stopped."""
+    from ekm import interrupts
+
+    command = "ekm"
     try:
         args = build_parser().parse_args(argv)
+        command = f"ekm {args.command}"
         args.func(args)
+        interrupts.check()  # a signal lost inside a C callback still stops the command
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return InputError.exit_status
     except Interrupted as exc:
         print(f"interrupted: {exc}", file=sys.stderr)
-        return Interrupted.exit_status
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return Interrupted.exit_status
+        return interrupts.status()
+    except KeyboardInterrupt:  # outside the long loops, which say what they kept: outputs are written whole or not at all
+        print(f"interrupted: {command} stopped", file=sys.stderr)
+        return interrupts.status()
     except BrokenPipeError:  # e.g. `ekm plan --json | head`: the reader left, nothing to report
         import os
 

@@ -1,7 +1,5 @@
-"""``python -m ekm.cli …``: the same as the ``ekm`` console script."""
+"""``python -m ekm.cli …``: the same as the ``ekm`` console script (:mod:`ekm.__main__`)."""
 
-import sys
+from ekm.__main__ import console
 
-from ekm.cli import main
-
-sys.exit(main())
+console()

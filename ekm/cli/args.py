@@ -11,8 +11,16 @@ import sys
 from ekm.api.checks import invalid_choice, output_path, sign_problem
 from ekm.provenance import provenance
 
-__all__ = ["finite_float", "nonneg_float", "nonneg_int", "one_of", "output_path", "positive_float", "positive_int",
+__all__ = ["command", "finite_float", "nonneg_float", "nonneg_int", "one_of", "output_path", "positive_float", "positive_int",
            "print_json", "provenance", "show_progress", "xy_point"]
+
+
+def command(sub, name: str, summary: str, examples: list[str], *, usage: str | None = None, more: str = ""):
+    """The parser of one sub-command: ``summary`` (one line) as its entry in ``ekm --help`` and its description,
+    and an epilog of ``examples`` (then ``more``), printed as written."""
+    epilog = "examples:\n" + "\n".join(f"  {e}" for e in examples) + (f"\n\n{more}" if more else "")
+    return sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".", usage=usage,
+                          epilog=epilog, formatter_class=argparse.RawDescriptionHelpFormatter)
 
 
 def _whole_number(text: str) -> int:

@@ -3,12 +3,15 @@ is in ``benchmarks/``)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import print_json, provenance
+from ekm.cli.args import command, print_json, provenance
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("bench", help="quick speed check of the training loop (JAX vs NumPy)")
-    p.add_argument("--mapping", choices=("direct", "indirect"), default="indirect")
+    p = command(sub, "bench", "quick speed check of the training loop (JAX against the NumPy reference)",
+                ["ekm bench", "ekm bench --mapping direct --json"],
+                more="The full study: python benchmarks/perf/bench_training.py (docs/performance.md).")
+    p.add_argument("--mapping", choices=("direct", "indirect"), default="indirect",
+                   help="which map's training step to time (default indirect)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 

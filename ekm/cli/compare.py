@@ -5,12 +5,18 @@ from __future__ import annotations
 
 import os
 
-from ekm.cli.args import nonneg_int, output_path, positive_int, print_json, show_progress
+from ekm.cli.args import command, nonneg_int, output_path, positive_int, print_json, show_progress
 from ekm.cli.run import add_scenario_options
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("compare", help="compare architectures over worlds and seeds (parallel; Dask optional)")
+    p = command(sub, "compare", "compare architectures over worlds and seeds, with 95 % intervals (in parallel; on Dask "
+                "with --scheduler)",
+                ["ekm compare --worlds three-rooms,concave-obstacle --architectures fusion,fields --trials 20",
+                 "ekm compare --suite corridor:20,maze:20 --trials 1 --out suite.jsonl --plot suite.png",
+                 "ekm compare --from suite.jsonl --json"],
+                more="Architectures and their parameters: ekm architectures. Results files, resume, workers that "
+                     "die: docs/guide/comparing.md.")
     p.add_argument("--worlds", default="", metavar="W1,W2,...",
                    help="named worlds, world files or generated worlds (maze:7), comma-separated")
     p.add_argument("--suite", metavar="FAMILY:COUNT,...",
@@ -20,7 +26,8 @@ def add_parser(sub) -> None:
                    help="first seed of the --suite worlds (default 1000: the test seeds, never tuned on)")
     p.add_argument("--architectures", default="fusion,fields,samba,schema", metavar="A1[:k=v,...],A2,...",
                    help="as ekm run spells them, comma-separated; a k=v after a comma continues the architecture "
-                        "before it (fusion:sensors=long,beta=0.8,fields); default fusion,fields,samba,schema")
+                        "before it (fusion:sensors=long,beta=0.8,fields); default fusion,fields,samba,schema; "
+                        "ekm architectures lists them all with their parameters")
     p.add_argument("--trials", type=positive_int, default=10, help="runs per architecture and world (default 10)")
     p.add_argument("--seed", type=nonneg_int, default=0,
                    help="trial i runs with seed SEED + i for every architecture and world (default 0)")
@@ -31,6 +38,13 @@ def add_parser(sub) -> None:
                    help="send the runs to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
     add_scenario_options(p)
+    p.add_argument("--out", metavar="RESULTS.jsonl",
+                   help="append every finished run to this results file as it arrives (JSON Lines; must not exist)")
+    p.add_argument("--resume", metavar="RESULTS.jsonl",
+                   help="finish the comparison of this results file (the same arguments as the one that made it): "
+                        "only the missing runs are made")
+    p.add_argument("--from", dest="from_results", metavar="RESULTS.jsonl",
+                   help="no runs: the table (and --plot, --json) of a finished results file")
     p.add_argument("--plot", metavar="PNG", help="success rates with their intervals, and one path per cell")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
@@ -39,24 +53,33 @@ def add_parser(sub) -> None:
 def run(args) -> None:
     """Compare architectures over worlds and trials (:func:`ekm.compare`); print the table or the JSON, draw
     the plot."""
-    from ekm.api.comparing import compare
+    from ekm.api.comparing import compare, load_comparison
+    from ekm.errors import InputError
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
-    if args.workers == 1 and not args.scheduler:  # the runs go in this process: one CPU for it (evaluation.pinning)
-        from evaluation.pinning import pin_to_one_cpu
+    if args.from_results:
+        if args.out or args.resume:
+            raise InputError("ekm compare: --from makes no runs; drop --out and --resume")
+        table = load_comparison(args.from_results)
+    else:
+        if args.workers == 1 and not args.scheduler:  # the runs go in this process: one CPU for it (evaluation.pinning)
+            from evaluation.pinning import pin_to_one_cpu
 
-        pin_to_one_cpu()
-    table = compare(args.worlds, args.architectures, suite=args.suite, world_seed=args.world_seed, trials=args.trials, seed=args.seed, maps=args.map,
-                    recover=args.recover, time_limit=args.time_limit, checkpoints=args.checkpoints, cell=args.cell,
-                    workers=args.workers, scheduler=args.scheduler,
-                    progress=show_progress(args))
+            pin_to_one_cpu()
+        table = compare(args.worlds, args.architectures, suite=args.suite, world_seed=args.world_seed,
+                        trials=args.trials, seed=args.seed, maps=args.map, recover=args.recover,
+                        time_limit=args.time_limit, checkpoints=args.checkpoints, cell=args.cell,
+                        workers=args.workers, scheduler=args.scheduler, out=args.out, resume=args.resume,
+                        progress=show_progress(args))
     if plot:
         table.save_plot(plot)
     if args.json:
         print_json(table.to_dict())
         return
-    print(f"{len(table.records)} runs ({len(table.labels)} architectures x {len(table.worlds)} worlds x {args.trials} "
-          f"trials, seeds {args.seed}..{args.seed + args.trials - 1}) in {table.seconds:.0f} s on {table.workers}")
+    failed = sum("failed" in r for r in table.records)
+    print(f"{len(table.records)} runs ({len(table.labels)} architectures x {len(table.worlds)} worlds x {table.trials} "
+          f"trials, seeds {table.seed}..{table.seed + table.trials - 1}) in {table.seconds:.0f} s on {table.workers}"
+          + (f"; {failed} failed (the reasons: --json, or the results file)" if failed else ""))
     if table.families:
         print_families(table.families)
         named = [r for r in table.rows if not any(r["world"] == g["given"] for g in table.records if g.get("family"))]

@@ -3,12 +3,13 @@ paths for them)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_int, output_path, positive_int, print_json
+from ekm.cli.args import command, nonneg_int, output_path, positive_int, print_json
 from ekm.cli.summary import print_summary
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("evaluate", help="run the ch. 6.1 positioning test on saved maps")
+    p = command(sub, "evaluate", "run the ch. 6.1 positioning test (E, P, T, D) on saved maps",
+                ["ekm evaluate indirect.npz direct.npz --plot fig6.png", "ekm evaluate indirect.npz --targets 200 --json"])
     p.add_argument("maps", nargs="+", metavar="MAP.npz", help="map file(s) from ekm train; several share one plot")
     p.add_argument("--targets", type=positive_int, default=50, help="test targets (default 50)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="seed of the test targets and noise (default 0)")

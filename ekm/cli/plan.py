@@ -4,11 +4,12 @@
 from __future__ import annotations
 
 from ekm.api.planning import METHODS, RULES
-from ekm.cli.args import nonneg_float, one_of, positive_float, print_json, xy_point
+from ekm.cli.args import command, nonneg_float, one_of, positive_float, print_json, xy_point
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("plan", help="plan checkpoints through a world (slippery cells, quadtree or grid)")
+    p = command(sub, "plan", "plan checkpoints through a world (slippery cells, quadtree or grid)",
+                ["ekm plan --world three-rooms --plot plan.png", "ekm plan --world my-lab.json --cell 0.01 --json"])
     p.add_argument("--world", required=True, metavar="W", help="named world or world file")
     p.add_argument("--start", type=xy_point, metavar="X,Y", help="start in metres (default: the world's)")
     p.add_argument("--goal", type=xy_point, metavar="X,Y", help="goal in metres (default: the world's)")
@@ -52,6 +53,14 @@ def run(args) -> None:
     if k > 10:
         print(f"  ... {k - 10} more checkpoints (--json lists them all)")
     print(f"  goal ({p.goal[0]:.3f}, {p.goal[1]:.3f})")
-    print(f"  checkpoint path {p.length:.3f} m ({p.rule} checkpoints), planned in {seconds:.3f} s")
+    print(f"  checkpoint path {p.length:.3f} m ({p.rule} checkpoints: the straight legs start - checkpoints - goal), "
+          f"planned in {seconds:.3f} s")
+    if p.rule != "visible":
+        from planner.plot import polyline_length, route_through_cells
+
+        through = route_through_cells(p)
+        if through is not None:
+            print(f"  route through the cells {polyline_length(through):.3f} m (the thesis's legs may cross walls; "
+                  f"the reactive layer goes round)")
     if args.plot:
         print(f"  plot written to {args.plot}")

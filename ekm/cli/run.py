@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 from ekm.api.driving import SENSORS
-from ekm.cli.args import nonneg_float, nonneg_int, one_of, output_path, positive_float, print_json, show_progress
+from ekm.cli.args import command, nonneg_float, nonneg_int, one_of, output_path, positive_float, print_json, show_progress
 
-ARCHITECTURE_HELP = ("ARCH[:k=v,...], e.g. fields, fields:form=thesis, fusion:beta=0.6,sensors=long; "
-                     "without parameters each runs its best documented variant")
+ARCHITECTURE_HELP = ("ARCH[:k=v,...]: fusion, fields, samba, schema, or one an installed package adds, e.g. fields, "
+                     "fields:form=thesis, fusion:beta=0.6,sensors=long; without parameters each runs its best "
+                     "documented variant; ekm architectures lists them with their parameters")
 
 
 def add_scenario_options(p) -> None:
@@ -28,7 +29,10 @@ def add_scenario_options(p) -> None:
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("run", help="drive the robot through a world: planner + architecture, one seed")
+    p = command(sub, "run", "drive the robot through a world: planner and one architecture, one seed",
+                ["ekm run --world concave-obstacle --architecture fields --plot run.png",
+                 "ekm run --world my-lab.json --architecture fusion:beta=0.6,sensors=long --map polar.npz --json"],
+                more="Architectures and their parameters: ekm architectures.")
     p.add_argument("--world", required=True, metavar="W", help="named world or world file")
     p.add_argument("--architecture", required=True, metavar="ARCH", help=ARCHITECTURE_HELP)
     p.add_argument("--sensors", type=one_of(SENSORS), metavar="{" + ",".join(SENSORS) + "}",

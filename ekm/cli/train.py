@@ -3,7 +3,7 @@ ch. 6.1 along the way (docs/design.md §3, §6); checkpoints at every test, ``--
 
 from __future__ import annotations
 
-from ekm.cli.args import nonneg_int, one_of, output_path, positive_int, print_json, show_progress
+from ekm.cli.args import command, nonneg_int, one_of, output_path, positive_int, print_json, show_progress
 from ekm.cli.summary import print_summary
 from ekm.config import CHARTS
 from ekm.errors import InputError
@@ -15,7 +15,11 @@ SETTINGS = ("mapping", "neurons", "priority", "chart", "steps", "trials", "seed"
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("train", help="train EKMs online (thesis ch. 4.3) and test them as in ch. 6.1")
+    p = command(sub, "train", "train EKMs online (thesis ch. 4.3) and test them as in ch. 6.1",
+                ["ekm train --mapping indirect --out indirect.npz --plot indirect.png",
+                 "ekm train --mapping indirect --chart polar --out polar.npz   # the map command fusion drives",
+                 "ekm train --resume indirect.checkpoint.npz                    # after Ctrl-C"],
+                usage="ekm train (--mapping {direct,indirect} --out MAP.npz | --resume CKPT.npz) [options]")
     p.add_argument("--mapping", type=one_of(("direct", "indirect")), metavar="{direct,indirect}",
                    help="direct (ch. 4.1) or indirect (ch. 4.2); required")
     p.add_argument("--neurons", type=positive_int, metavar="N", help="N x N lattice (default 15)")

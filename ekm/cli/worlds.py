@@ -3,9 +3,8 @@
 
 from __future__ import annotations
 
-import argparse
 
-from ekm.cli.args import finite_float, nonneg_int, one_of, print_json
+from ekm.cli.args import command, finite_float, nonneg_int, one_of, print_json
 from robots.generator import FAMILIES
 
 
@@ -17,14 +16,18 @@ def _families() -> str:
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("worlds", help="list, check, draw and generate worlds",
-                       description="List the named worlds, check world files, draw them, or generate a world "
-                                   "of one of the benchmark families below.",
-                       epilog=_families(), formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = command(sub, "worlds", "list the named worlds, check world files, draw them, or generate a world of a "
+                "benchmark family",
+                ["ekm worlds", "ekm worlds --show three-rooms > my-lab.json   # a template to edit",
+                 "ekm worlds --check my-lab.json --plot my-lab.png",
+                 "ekm worlds --generate maze --seed 7 --out maze7.json"],
+                more=_families())
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--plot", metavar="DIR|PNG",
-                   help="draw each world to DIR/NAME.png (with --generate: the generated world to PNG)")
+                   help="draw each world to DIR/NAME.png, or one world to PNG (with --generate: the generated world)")
     p.add_argument("--check", metavar="FILE", nargs="+", help="validate world files (exit 2 on the first bad one)")
+    p.add_argument("--show", metavar="WORLD",
+                   help="print a world's file (a named world, a file or FAMILY:SEED): a template for your own")
     p.add_argument("--generate", metavar="FAMILY", type=one_of(tuple(FAMILIES)),
                    help="generate a world of FAMILY (listed below); needs --seed and --out")
     p.add_argument("--seed", metavar="N", type=nonneg_int, help="the generated world's seed (whole number >= 0)")
@@ -45,6 +48,15 @@ def run(args) -> None:
         generate(args)
         return
     from ekm.errors import InputError
+
+    if args.show is not None:
+        if args.check or args.plot or args.json:
+            raise InputError("ekm worlds: --show prints one world's file; drop --check, --plot and --json")
+        from ekm.api.worlds import world
+        from robots.worldfile import world_json
+
+        print(world_json(world(args.show)), end="")
+        return
 
     for option in ("seed", "difficulty", "out"):
         if getattr(args, option) is not None:

@@ -25,25 +25,121 @@ from robots.controllers import schema as motor_schemas
 class Architecture:
     """A named architecture: its parameter class, its builder, a one-line summary and the chart of the
     shipped map it drives when no map is given (:mod:`ekm.data`) — None for an architecture that drives
-    no EKM (its ``build`` then gets ``ekm=None, cfg=None``)."""
+    no EKM (its ``build`` then gets ``ekm=None, cfg=None``). ``charts``: the charts of the maps it drives
+    correctly (default: only ``default_chart``); a map of another chart is refused.
+
+    ``params`` is a frozen dataclass whose every field has a default; a field's ``metadata`` may hold
+    ``help`` (one line, with the unit) and ``choices`` (the allowed values of a text parameter).
+    ``build(params, ekm, cfg, spec=…, robot=…)`` returns a :class:`~robots.controllers.base.Controller`.
+    """
 
     name: str
     params: type
     build: Callable[..., Any]
     summary: str
-    default_chart: str | None
+    default_chart: str | None = None
+    charts: tuple = ()
+
+    def __post_init__(self):
+        if not self.charts and self.default_chart is not None:
+            object.__setattr__(self, "charts", (self.default_chart,))
 
 
+#: The architectures of the package, in the order ``ekm architectures`` lists them.
 ARCHITECTURES: dict[str, Architecture] = {
     "fusion": Architecture("fusion", fusion.FusionParams, fusion.build,
                            "command fusion: indirect EKM + Braitenberg type-3C avoidance (ch. 4.5)", fusion.DEFAULT_CHART),
     "fields": Architecture("fields", neural_fields.FieldParams, neural_fields.build,
-                           "dynamic neural fields: cooperative EKMs (ch. 5)", neural_fields.DEFAULT_CHART),
+                           "dynamic neural fields: cooperative EKMs (ch. 5)", neural_fields.DEFAULT_CHART,
+                           charts=("signed", "polar")),
     "samba": Architecture("samba", samba.SambaParams, samba.build,
                           "Samba action maps: MAV(Goto, filtered Avoid), heaviest action (Riekki 1999)", None),
     "schema": Architecture("schema", motor_schemas.SchemaParams, motor_schemas.build,
                            "motor schemas: move-to-goal + avoid-obstacle + noise vectors, summed (Arkin ch. 4.4)", None),
 }
+
+#: The entry-point group through which an installed package adds architectures: each entry point names an
+#: :class:`Architecture` (or a function without arguments that returns one).
+ENTRY_POINTS = "ekm.architectures"
+
+_ADDED: dict[str, Architecture] = {}
+_FROM_ENTRY_POINTS: set[str] = set()
+_LOADED = False
+
+
+def register(arch: Architecture) -> Architecture:
+    """Add ``arch`` under its name (or replace an architecture added before under that name), so that
+    :func:`parse_architectures`, ``ekm run``, ``ekm compare`` and ``ekm architectures`` know it. Its
+    parameters are checked as the built-in ones are; a built-in name cannot be taken."""
+    import dataclasses
+    import re
+
+    if not isinstance(arch, Architecture):
+        raise InputError(f"register_architecture: expected an Architecture, got {type(arch).__name__}")
+    if not re.fullmatch(r"[a-z][a-z0-9_-]*", arch.name or ""):
+        raise InputError(f"architecture {arch.name!r}: a name is lower-case letters, digits, '-' and '_', "
+                         f"starting with a letter")
+    if arch.name in ARCHITECTURES:
+        raise InputError(f"architecture {arch.name!r}: the name of a built-in architecture")
+    if not (dataclasses.is_dataclass(arch.params) and isinstance(arch.params, type)):
+        raise InputError(f"architecture {arch.name}: params must be a dataclass (its parameters), "
+                         f"got {arch.params!r}")
+    try:
+        defaults = arch.params()
+        hash(defaults)
+    except TypeError as exc:
+        raise InputError(f"architecture {arch.name}: params must be a frozen dataclass whose every field has a "
+                         f"default ({exc})") from None
+    if not callable(arch.build):
+        raise InputError(f"architecture {arch.name}: build must be callable")
+    from ekm.config import CHARTS
+
+    for chart in (arch.default_chart, *arch.charts):
+        if chart is not None and chart not in CHARTS:
+            raise InputError(f"architecture {arch.name}: chart must be one of {', '.join(CHARTS)}, got {chart!r}")
+    _ADDED[arch.name] = arch
+    return arch
+
+
+def registry() -> dict[str, Architecture]:
+    """Every architecture by name: the built-in ones, then those of installed packages' entry points
+    (:data:`ENTRY_POINTS`, loaded once), then those added with :func:`register`."""
+    global _LOADED
+    if not _LOADED:
+        _LOADED = True
+        _load_entry_points()
+    return {**ARCHITECTURES, **_ADDED}
+
+
+def _load_entry_points() -> None:
+    from importlib.metadata import entry_points
+
+    for ep in entry_points(group=ENTRY_POINTS):
+        where = f"entry point {ep.name!r} ({ep.value}) of group {ENTRY_POINTS}"
+        try:
+            found = ep.load()
+            arch = found() if callable(found) and not isinstance(found, Architecture) else found
+        except Exception as exc:
+            raise InputError(f"{where}: cannot load ({type(exc).__name__}: {exc})") from None
+        if not isinstance(arch, Architecture):
+            raise InputError(f"{where}: names {type(arch).__name__}, not an ekm Architecture")
+        if arch.name in _ADDED:
+            continue  # registered in this process already (a worker given it by its job)
+        try:
+            register(arch)
+        except InputError as exc:
+            raise InputError(f"{where}: {exc}") from None
+        _FROM_ENTRY_POINTS.add(arch.name)
+
+
+def added_here() -> set[str]:
+    """The names added with :func:`register` in this process (not through entry points)."""
+    return set(_ADDED) - _FROM_ENTRY_POINTS
+
+
+def added(name: str) -> Architecture | None:
+    """The architecture added under ``name`` (not a built-in one), for a comparison's workers."""
+    return _ADDED.get(name)
 
 
 @dataclass(frozen=True)
@@ -60,7 +156,7 @@ class ArchitectureSpec:
     @property
     def label(self) -> str:
         """Only the parameters that differ from the defaults (``fusion:beta=0.6``, or just ``fusion``)."""
-        default = ARCHITECTURES[self.name].params()
+        default = registry()[self.name].params()
         changed = [f"{f.name}={_show(getattr(self.params, f.name))}" for f in fields(self.params)
                    if getattr(self.params, f.name) != getattr(default, f.name)]
         return f"{self.name}:{','.join(changed)}" if changed else self.name
@@ -75,20 +171,32 @@ class ArchitectureSpec:
     @property
     def default_chart(self) -> str | None:
         """The chart of the shipped map this architecture drives when no map is given (None: it needs none)."""
-        return ARCHITECTURES[self.name].default_chart
+        return registry()[self.name].default_chart
 
     @property
     def uses_map(self) -> bool:
         """Whether this architecture drives an EKM (command fusion and neural fields do)."""
         return self.default_chart is not None
 
+    def check_map(self, cfg, source: str = "the map") -> None:
+        """Refuse, in one line, a map this architecture does not drive correctly: none, a direct one, or one
+        of a chart it does not take (saying which it needs and how to train one)."""
+        if cfg is None or cfg.mapping != "indirect":
+            got = "no map" if cfg is None else f"a {cfg.mapping} map"
+            raise InputError(f"architecture {self.name}: needs an indirect map (Eq. 4.5), got {got}")
+        charts = registry()[self.name].charts
+        if cfg.chart not in charts:
+            need = charts[0]
+            raise InputError(f"architecture {self.name}: drives a {' or '.join(charts)}-chart map and {source} is "
+                             f"{cfg.chart}-chart; train one with: ekm train --mapping indirect --chart {need} "
+                             f"--out {need}.npz (or give no --map: the shipped {need}-chart map)")
+
     def build(self, ekm=None, cfg=None, robot=None):
         """The ready :class:`~robots.controllers.base.Controller` for one trial's indirect map ``ekm`` (None for
         an architecture that drives no map)."""
-        if self.uses_map and (cfg is None or cfg.mapping != "indirect"):
-            got = "no map" if cfg is None else f"a {cfg.mapping} map"
-            raise InputError(f"architecture {self.name}: needs an indirect map (Eq. 4.5), got {got}")
-        arch = ARCHITECTURES[self.name]
+        if self.uses_map:
+            self.check_map(cfg)
+        arch = registry()[self.name]
         kwargs = {} if robot is None else {"robot": robot}
         return arch.build(self.params, ekm, cfg, spec=str(self), **kwargs)
 
@@ -101,7 +209,7 @@ def _show(value) -> str:
 def parse_architectures(text: str) -> list[ArchitectureSpec]:
     """Read ``A1[:k=v,...],A2,...`` (see the module docstring); raises :class:`InputError` on any fault."""
     if not text or not text.strip():
-        raise InputError("architecture: empty (choose from " + ", ".join(ARCHITECTURES) + ")")
+        raise InputError("architecture: empty (choose from " + ", ".join(registry()) + ")")
     groups: list[tuple[str, list[str]]] = []
     for token in (t.strip() for t in text.split(",")):
         if not token:
@@ -135,9 +243,11 @@ def _pair(name: str, kv: str) -> tuple[str, str]:
 
 def make_spec(name: str, values: dict[str, str]) -> ArchitectureSpec:
     """The :class:`ArchitectureSpec` of ``name`` with parameters given as text (``{"beta": "0.6"}``)."""
-    if name not in ARCHITECTURES:
-        raise InputError(f"architecture {name!r}: unknown (choose from {', '.join(ARCHITECTURES)})")
-    cls = ARCHITECTURES[name].params
+    known_architectures = registry()
+    if name not in known_architectures:
+        raise InputError(f"architecture {name!r}: unknown (choose from {', '.join(known_architectures)}; "
+                         f"ekm architectures describes them)")
+    cls = known_architectures[name].params
     known = {f.name: f for f in fields(cls)}
     typed = {}
     for key, text in values.items():
@@ -182,6 +292,11 @@ def _typed(name: str, f, text: str):
     return text
 
 
-def describe_parameters(name: str) -> list[tuple[str, str, str]]:
-    """``(parameter, default, help)`` of every parameter of ``name`` (for ``--help`` texts and docs)."""
-    return [(f.name, _show(f.default), f.metadata.get("help", "")) for f in fields(ARCHITECTURES[name].params)]
+def describe_parameters(name: str) -> list[dict]:
+    """Every parameter of ``name`` as ``{name, type, default, choices, help}`` (``ekm architectures``, docs)."""
+    out = []
+    for f in fields(registry()[name].params):
+        kind = f.type if isinstance(f.type, str) else f.type.__name__
+        out.append({"name": f.name, "type": kind, "default": _show(f.default),
+                    "choices": list(f.metadata.get("choices", ())) or None, "help": f.metadata.get("help", "")})
+    return out

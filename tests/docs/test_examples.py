@@ -1,6 +1,7 @@
-"""Every ```python block of README.md and of the Python guide (docs/guide/python.md) runs as written: each
-saved as a script in a directory of its own and run with this interpreter, as a user who copies it into a
-file would; the files it writes (``save("….npz")``, ``save_plot("….png")``) must be there afterwards.
+"""Every ```python block of README.md and of the guide's Python pages runs as written: each saved as a script
+in a directory of its own and run with this interpreter, as a user who copies it into a file would; the
+files it writes (``save("….npz")``, ``save_plot("….png")``) must be there afterwards. A block that shows a
+file of the repository is that file.
 
 The blocks run side by side (each in its own process) to keep the test short; each is independent of the
 others.
@@ -15,9 +16,13 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGES = ("README.md", "docs/guide/python.md")
-BLOCK = re.compile(r"^```python\n(.*?)^```$", flags=re.M | re.S)
-BLOCKS = [(page, code) for page in PAGES for code in BLOCK.findall((ROOT / page).read_text())]
+PAGES = ("README.md", "docs/guide/python.md", "docs/guide/architectures.md")
+#: A ```python block, or one titled with the file it shows (```python title="examples/…"): that one must be
+#: the file, word for word (the file itself is run by tests/ekm/cli/test_architectures.py).
+BLOCK = re.compile(r'^```python(?: title="([^"]+)")?\n(.*?)^```$', flags=re.M | re.S)
+FOUND = [(page, title, code) for page in PAGES for title, code in BLOCK.findall((ROOT / page).read_text())]
+BLOCKS = [(page, code) for page, title, code in FOUND if not title]
+FILES = [(page, title, code) for page, title, code in FOUND if title]
 TIMEOUT = 600  # s, for all blocks together
 
 
@@ -46,6 +51,19 @@ def finished(tmp_path_factory):
             err += f"\n(timed out after {TIMEOUT} s)"
         done[i] = (d, proc.returncode, out, err)
     return done
+
+
+@pytest.mark.parametrize("page, title, code", FILES, ids=[f"{Path(p).stem}: {t}" for p, t, _ in FILES])
+def test_a_block_titled_with_a_file_is_that_file(page, title, code):
+    if code.strip() == f'--8<-- "{title}"':  # the site includes the file itself (pymdownx.snippets)
+        assert (ROOT / title).is_file()
+        return
+    assert code == (ROOT / title).read_text(), f"{page} shows {title} other than it is"
+
+
+def test_the_readme_shows_the_example_package_in_about_30_lines():
+    (shown,) = [code for page, title, code in FILES if page == "README.md"]
+    assert len(shown.splitlines()) <= 32 and "ekm.Architecture(" in shown
 
 
 def test_the_readme_example_is_five_lines_and_the_guide_shows_every_use():

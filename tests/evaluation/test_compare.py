@@ -1,5 +1,5 @@
-"""Comparing architectures (evaluation.compare): the runs, their intervals, the same results on Dask as in
-local processes; and issue 21's targets on the generated test worlds (slow)."""
+"""Comparing architectures (evaluation.compare): the runs, their intervals, runs that fail and workers that die
+(on fake workers); and issue 21's targets on the generated test worlds (slow)."""
 
 import pytest
 
@@ -48,14 +48,84 @@ def test_a_job_is_a_pure_function_of_its_fields():
     assert a == b and a["reached"] and a["seed"] == 3 and len(a["path"]) > 10
 
 
-def test_a_dask_local_cluster_gives_the_same_runs_as_local_processes():
-    distributed = pytest.importorskip("distributed")
-    specs = parse_architectures("fusion,fields")
-    job_list = jobs(["open-arena", "three-rooms-static"], specs, 2, 0, QUICK)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
-        with distributed.Client(cluster) as client:
-            on_dask = compare(job_list, client.get_executor(pure=False))
-    assert on_dask == compare(job_list)  # run for run
+# ---------------------------------------------------------------------------- runs that fail, workers that die
+
+class Lost(Exception):
+    """What a fake pool raises for a run whose worker died."""
+
+
+class FakeWorkers:
+    """Workers whose runs are made at once in this process; job ``j`` loses its worker ``deaths[j]`` times
+    before it runs. ``breaks_whole``: as a local pool, a death fails every run in flight (``window`` at a
+    time)."""
+
+    def __init__(self, deaths: dict, window: int = 2, breaks_whole: bool = True):
+        self.deaths, self.window, self.breaks_whole = dict(deaths), window, breaks_whole
+        self.submitted, self.renewed = [], 0
+
+    def submit(self, job):
+        from concurrent.futures import Future
+
+        self.submitted.append(job.trial)
+        future = Future()
+        if self.deaths.get(job.trial, 0) > 0:
+            self.deaths[job.trial] -= 1
+            future.set_exception(Lost("killed"))
+        elif job.world == "raises":
+            future.set_exception(RuntimeError("boom\nsecond line"))
+        else:
+            future.set_result({"given": job.world, "label": job.label, "trial": job.trial, "reached": True})
+        return future
+
+    def lost(self, exc):
+        return isinstance(exc, Lost)
+
+    def renew(self):
+        self.renewed += 1
+
+
+def fake_jobs(n: int, world: str = "w") -> list[Job]:
+    return [Job(world=world, architecture="a", label="a", trial=i, seed=i, config=QUICK) for i in range(n)]
+
+
+def test_a_run_whose_worker_dies_is_run_again_and_the_records_keep_the_jobs_order():
+    workers = FakeWorkers({1: 2, 4: 1})
+    records = compare(fake_jobs(6), workers)
+    assert [r["trial"] for r in records] == [0, 1, 2, 3, 4, 5] and all(r["reached"] for r in records)
+    assert workers.submitted.count(1) == 3 and workers.submitted.count(4) == 2 and workers.renewed == 3
+
+
+def test_a_run_whose_worker_keeps_dying_is_failed_after_the_retries_and_the_rest_finish():
+    records = compare(fake_jobs(3), FakeWorkers({2: 10}, window=1), retries=3)
+    assert [r["reached"] for r in records] == [True, True, False]
+    assert records[2]["failed"] == "w: its worker died 4 times (Lost)" and records[2]["trial"] == 2
+
+
+def test_a_run_that_raises_is_failed_with_its_exception_in_one_line_naming_the_world():
+    (record,) = compare(fake_jobs(1, world="raises"), FakeWorkers({}))
+    assert record["failed"] == "raises: RuntimeError: boom" and record["ended"] == "failed"
+
+
+def test_runs_already_done_are_not_run_again():
+    workers, seen = FakeWorkers({}), []
+    records = compare(fake_jobs(4), workers, lambda i, r: seen.append(i), done={0: {"trial": 0, "old": True},
+                                                                            2: {"trial": 2, "old": True}})
+    assert sorted(workers.submitted) == [1, 3] and sorted(seen) == [1, 3]
+    assert records[0]["old"] and records[2]["old"] and "old" not in records[1]
+
+
+def test_run_job_records_a_world_without_a_route_for_that_world(tmp_path):
+    """A walled-in goal: the planner finds no route at any cell; the reason names the world file."""
+    import json
+
+    world = {"name": "walled", "size": [0.5, 0.5], "start": [0.1, 0.1, 0.0], "goal": [0.4, 0.4],
+             "walls": [[0.35, 0.35, 0.45, 0.35], [0.45, 0.35, 0.45, 0.45], [0.45, 0.45, 0.35, 0.45],
+                       [0.35, 0.45, 0.35, 0.35]]}
+    path = tmp_path / "walled.json"
+    path.write_text(json.dumps(world))
+    (job,) = jobs([str(path)], parse_architectures("fusion"), 1, 0, QUICK)
+    record = run_job(job)
+    assert record["ended"] == "failed" and str(path) in record["failed"] and "route" in record["failed"]
 
 
 # ------------------------------------------------------------------------------------ generalisation (slow)

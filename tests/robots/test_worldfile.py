@@ -52,7 +52,7 @@ BAD = {
     "unknown key": (with_(colour="red"), "lab.json: colour: unknown key"),
     "unknown nested key": (with_(obstacles=[{"type": "circle", "center": [0.2, 0.1], "radius": 0.02, "r": 1}]),
                            "obstacles[0].r: unknown key"),
-    "wrong type": (with_(size="big"), "size: must be a list of 2 numbers"),
+    "wrong type": (with_(size="big"), "size: must be [width, height] (m), got \"big\""),
     "bool as number": (with_(goal=[True, 0.3]), "goal[0]: must be a number"),
     "missing key": ({k: v for k, v in GOOD.items() if k != "start"}, "start: missing"),
     "unknown shape": (with_(unforeseen=[{"type": "star", "center": [0.6, 0.25]}]),

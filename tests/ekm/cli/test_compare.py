@@ -51,3 +51,36 @@ def test_bad_input_is_one_line_before_any_run(capsys, monkeypatch, argv, message
     monkeypatch.setattr(comparison, "run_job", lambda job: pytest.fail("a run started"))
     code, out, err = cli(capsys, "compare", *argv)
     assert code == 2 and out == "" and message in err and err.count("\n") == 1
+
+
+def test_a_comparison_resumed_from_its_results_file_gives_the_same_json(capsys, tmp_path):
+    """Eight runs written to --out; the file cut after three runs and half a line (a crash); --resume makes
+    the five missing runs, and the JSON is the uninterrupted one's; --from makes it again with no runs."""
+    results = tmp_path / "r.jsonl"
+    code, out, _ = cli(capsys, *ARGS, "--workers", "1", "--out", results)
+    whole = json.loads(out)
+    lines = results.read_text().splitlines(keepends=True)
+    assert code == 0 and len(lines) == 1 + 8 and all(line.endswith("\n") for line in lines)
+    results.write_text("".join(lines[:4]) + lines[4][:50])
+    code, out, _ = cli(capsys, *ARGS, "--workers", "1", "--resume", results)
+    assert code == 0 and strip(json.loads(out)) == strip(whole) and len(results.read_text().splitlines()) == 9
+    code, out, _ = cli(capsys, "compare", "--from", results, "--json", "--plot", tmp_path / "again.png")
+    assert code == 0 and strip(json.loads(out)) == strip(whole) and (tmp_path / "again.png").stat().st_size > 0
+
+
+def test_results_files_are_refused_in_one_line(capsys, tmp_path):
+    results = tmp_path / "r.jsonl"
+    code, _, _ = cli(capsys, "compare", "--worlds", "open-arena", "--architectures", "fusion", "--trials", "2",
+                     "--time-limit", "10", "--workers", "1", "--out", results)
+    lines = results.read_text().splitlines(keepends=True)
+    results.write_text("".join(lines[:2]))
+    for argv, message in [
+        (["--worlds", "open-arena", "--architectures", "fusion", "--out", results], "exists; continue it with --resume"),
+        (["--worlds", "open-arena", "--architectures", "samba", "--trials", "2", "--time-limit", "10",
+          "--resume", results], "made with other settings (labels: fusion in the file, samba now)"),
+        (["--from", results], "holds 1 of the comparison's 2 runs; finish it with ekm compare … --resume"),
+        (["--from", results, "--out", tmp_path / "x.jsonl"], "--from makes no runs"),
+    ]:
+        code, out, err = cli(capsys, "compare", *argv)
+        assert code == 2 and message in err and err.count("\n") == 1, err
+    assert results.read_text() == "".join(lines[:2])

@@ -54,7 +54,8 @@ def test_human_summary(capsys):
     assert "three-rooms at t = 0 s: slippery decomposition of a 60 x 30 bitmap" in out
     assert "5 cells, 4 graph edges" in out
     assert "checkpoint 1 (0.440, 0.280)" in out and "goal (1.100, 0.420)" in out
-    assert "(thesis checkpoints)" in out
+    assert "(thesis checkpoints: the straight legs start - checkpoints - goal)" in out
+    assert "route through the cells" in out and "the thesis's legs may cross walls" in out
 
 
 def test_plot_is_a_png_written_atomically(capsys, tmp_path):

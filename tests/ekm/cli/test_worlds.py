@@ -104,6 +104,40 @@ def test_plot_into_a_file_is_refused(tmp_path, capsys):
     assert err.startswith(f"error: --plot {blocker}: cannot create the directory") and err.count("\n") == 1
 
 
+def test_one_world_plots_to_a_png_and_several_are_refused_one(tmp_path, capsys):
+    path = write(tmp_path, "lab.json", GOOD)
+    status, out, _ = run(capsys, "--check", path, "--plot", str(tmp_path / "lab.png"))
+    assert status == 0 and (tmp_path / "lab.png").read_bytes()[:4] == b"\x89PNG"
+    status, _, err = run(capsys, "--plot", str(tmp_path / "all.png"))
+    assert status == 2 and "a PNG holds one world, and there are 8; give a directory" in err
+    assert not (tmp_path / "all.png").exists()
+
+
+@pytest.mark.parametrize("name", ["three-rooms", "concave-obstacle", "moving-target"])
+def test_show_prints_a_named_world_as_its_shipped_file_holds_it(name, capsys, tmp_path):
+    status, out, _ = run(capsys, "--show", name)
+    shipped = json.loads((ROOT / "robots" / "worlds" / f"{name}.json").read_text())
+    assert status == 0 and {k: v for k, v in json.loads(out).items() if k in shipped} == shipped
+    status, out, _ = run(capsys, "--check", write(tmp_path, "copy.json", out))
+    assert status == 0 and name in out
+
+
+@pytest.mark.parametrize("doc, line", [
+    ({**GOOD, "start": [0.1, 0.25]},
+     "start: must be [x, y, θ] (m, m, rad: the heading, 0 = along +x), got [0.1, 0.25]"),
+    ({**GOOD, "walls": [[0.1, 0.1, 0.3]]}, "walls[0]: must be [x0, y0, x1, y1] (m): a segment from (x0, y0) to "
+                                           "(x1, y1), not a box; give a box as an obstacle, got [0.1, 0.1, 0.3]"),
+    ({**GOOD, "unforeseen": [{"center": [0.5, 0.25], "radius": 0.05}]},
+     "unforeseen[0].type: missing (one of box, circle, polygon, segment)"),
+    ({**GOOD, "moving": [{"shape": {"type": "circle", "radius": 0.02}, "path": {"center": [0.5, 0.25]}}]},
+     "moving[0].path.type: missing (one of circle, line)"),
+])
+def test_error_lines_say_what_a_list_holds_and_which_types_there_are(doc, line, tmp_path, capsys):
+    path = write(tmp_path, "lab.json", doc)
+    status, _, err = run(capsys, "--check", path)
+    assert status == 2 and err == f"error: {path}: {line}\n"
+
+
 def test_two_checked_worlds_with_one_name_are_refused_before_plotting(tmp_path, capsys):
     a, b = write(tmp_path, "a.json", GOOD), write(tmp_path, "b.json", GOOD)
     status, _, err = run(capsys, "--check", a, b, "--plot", str(tmp_path / "out"))
