@@ -167,11 +167,33 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     ``on_tick(t)`` is called after every tick (progress bars). Raises :class:`InputError` if the planner
     finds no route at the start (a world it cannot route through, or a start inside an obstacle).
     """
-    robot = controller.robot
+    state = controller.init()
+    step = _in_one_loop(controller.step)
+    ticks = episode(world, controller, seed, config, controller.spec, on_tick)
+    try:
+        obs = next(ticks)
+        while True:
+            state, command = step(state, obs)
+            obs = ticks.send(command)
+    except StopIteration as done:
+        return done.value
+
+
+def episode(world: World, body, seed: int = 0, config: ScenarioConfig = ScenarioConfig(), spec: str = "",
+            on_tick=None, report: dict | None = None):
+    """The run of :func:`run_scenario` as a generator, for whatever chooses the commands (a controller, or a
+    reinforcement-learning agent through :mod:`ekm.gym`): it yields the :class:`Observation` of each tick on
+    which a command is wanted, takes the ``(2,)`` wheel speeds (m/s) sent back, and returns the
+    :class:`RunRecord` when the run ends (``StopIteration.value``). ``body`` gives the ``sensors`` and the
+    ``robot`` (a :class:`Controller` does). Ticks on which recovery turns the robot on the spot are not
+    yielded. ``report``, if given, is kept up to date before each yield: ``collisions`` (contact episodes so
+    far) and ``route_m`` (m along the plan still to go: to the current checkpoint, then leg by leg to the
+    goal)."""
+    robot = body.robot
     period = robot.avoid_period
     sim = PymunkWorld(world, params=robot, seed=seed)
     capture = robot.radius if config.capture_radius is None else config.capture_radius
-    rec = RunRecord(world=world, architecture=controller.spec, seed=seed, period=period)
+    rec = RunRecord(world=world, architecture=spec, seed=seed, period=period)
     known = world  # the planner's map: the world's known shapes (+ what recovery adds)
     current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
@@ -179,8 +201,6 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
     index, target_id = 0, 0
     monitor = TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground)
     radii = np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32)
-    state = controller.init()
-    step = _in_one_loop(controller.step)
     poses, times = [sim.pose], [0.0]
     sensed = []  # (t, pose, readings, markers) of every tick whose IR saw something: RunRecord.hits, made when needed
     last_t, collisions, settled_since, turn_until = 0.0, 0, None, 0.0
@@ -231,7 +251,7 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
         goal = target_xy(t)
         rec.goal_path = np.vstack([rec.goal_path, goal[None]]) if world.moving_goal else rec.goal_path
         pose = sim.pose
-        ir = sim.sense(controller.sensors)
+        ir = sim.sense(body.sensors)
         markers = _markers(world, sim, t, radii)
         if np.isfinite(ir).any():
             sensed.append((t, pose, ir, markers))
@@ -246,8 +266,12 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             command = _turn_on_the_spot(float(obs.target[0]), robot)  # recovery: face the new route first
         else:
             turn_until = 0.0
-            state, command = step(state, obs)
-            command = np.asarray(command, dtype=float)
+            if report is not None:
+                legs = current.checkpoints[index:]
+                report["collisions"] = sim.collisions
+                report["route_m"] = float(np.linalg.norm(pose[:2] - goal)
+                                          + np.linalg.norm(np.diff(legs, axis=0), axis=1).sum())
+            command = np.asarray((yield obs), dtype=float)
         distance = float(np.linalg.norm(pose[:2] - goal))
         inside = final and not world.moving_goal and distance < config.checkpoint_tolerance
         settled_since = (settled_since if settled_since is not None else t) if inside else None
@@ -286,8 +310,8 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
                 rec.trapped, rec.ended = True, "trapped"
                 break
             rec.recoveries += 1
-            known, added = with_sensed(known, *sensed_points(sensed, controller), config.sensed_radius,
-                                       controller.sensors.noise, controller.sensors.resolution_m)
+            known, added = with_sensed(known, *sensed_points(sensed, body), config.sensed_radius,
+                                       body.sensors.noise, body.sensors.resolution_m)
             if not replan_from(sim.t, "recovery", added):
                 rec.trapped, rec.ended = True, "trapped (no route around the sensed obstacle)"
                 break
@@ -296,7 +320,7 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
         rec.ended = "time limit"
 
     rec.poses, rec.times = np.asarray(poses), np.asarray(times)
-    rec.hits = _hits(sensed, controller)
+    rec.hits = _hits(sensed, body)
     rec.time_s = float(rec.checkpoint_log[-1][0] if rec.arrived else rec.times[-1])
     rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
     rec.collisions, rec.contact_s = sim.collisions, sim.contact_s

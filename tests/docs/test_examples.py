@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-PAGES = ("README.md", "docs/guide/python.md", "docs/guide/architectures.md")
+PAGES = ("README.md", "docs/guide/python.md", "docs/guide/architectures.md", "docs/guide/gym.md")
 #: A ```python block, or one titled with the file it shows (```python title="examples/…"): that one must be
 #: the file, word for word (the file itself is run by tests/ekm/cli/test_architectures.py).
 BLOCK = re.compile(r'^```python(?: title="([^"]+)")?\n(.*?)^```$', flags=re.M | re.S)
