@@ -12,7 +12,7 @@ compare --json`` process; the table gives the wall time of the whole process (st
 controllers in every worker, the runs) and checks that every count gives the same results.
 
 **Training**: each device count runs in its own process with
-``XLA_FLAGS=--xla_force_host_platform_device_count=N``, where :func:`training.bench.jax_trial_steps_per_s`
+``XLA_FLAGS=--xla_force_host_platform_device_count=N``, where :func:`training.throughput.jax_trial_steps_per_s`
 times ``train_chunk`` on the 15×15 map, 5 trials, trials spread as ``ekm train`` spreads them
 (:func:`training.run.trial_layout`: 5 trials on 2 devices run as 3 + 3, a padding trial not counted).
 With ``--protocol`` it also times the whole ``ekm train --mapping indirect`` (100,000 steps, the test
@@ -41,7 +41,7 @@ TRAINING = """
 import json, sys
 import jax
 from ekm.config import EKMConfig
-from training.bench import jax_trial_steps_per_s
+from training.throughput import jax_trial_steps_per_s
 out = {m: jax_trial_steps_per_s(EKMConfig(mapping=m), steps=int(sys.argv[1])) for m in ("indirect", "direct")}
 print(json.dumps({"devices": jax.device_count(), **out}))
 """

@@ -21,7 +21,7 @@ import jax
 from ekm.config import EKMConfig
 from evaluation.metrics import summarize
 from evaluation.protocol import evaluate
-from training.bench import jax_trial_steps_per_s, numpy_trial_steps_per_s
+from training.throughput import jax_trial_steps_per_s, numpy_trial_steps_per_s
 from training.online import TrainConfig
 from training.run import train
 

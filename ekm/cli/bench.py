@@ -18,7 +18,7 @@ def add_parser(sub) -> None:
 
 def run(args) -> None:
     """Quick speed check: JAX training loop vs the NumPy reference (full study: benchmarks/)."""
-    from training.bench import quick
+    from training.throughput import quick
 
     result = quick(args.mapping)
     if args.json:
