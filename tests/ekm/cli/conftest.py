@@ -15,3 +15,14 @@ def trained(tmp_path_factory):
                  "--eval-every", "500", "--eval-targets", "10", "--out", str(out), "--plot", str(plot), "--json"])
     assert code == 0
     return d, out, plot
+
+
+@pytest.fixture
+def cli(capsys):
+    """``cli(*argv)`` runs ``ekm ARGV`` in this process (arguments made strings) and returns ``(exit status,
+    stdout, stderr)``."""
+    def run(*argv):
+        code = main([str(a) for a in argv])
+        cap = capsys.readouterr()
+        return code, cap.out, cap.err
+    return run

@@ -13,7 +13,6 @@ from pathlib import Path
 import pytest
 
 import ekm
-from ekm.cli import main
 from ekm.errors import InputError
 from robots.controllers import spec
 
@@ -47,14 +46,9 @@ def installed(tmp_path):
     return tmp_path
 
 
-def cli(capsys, *argv):
-    code = main([str(a) for a in argv])
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
-
-def test_every_built_in_architecture_is_listed_with_its_parameters(capsys):
-    code, out, _ = cli(capsys, "architectures", "--json")
+def test_every_built_in_architecture_is_listed_with_its_parameters(cli):
+    code, out, _ = cli("architectures", "--json")
     rows = json.loads(out)["architectures"]
     assert code == 0 and [r["name"] for r in rows][:4] == BUILT_IN
     fusion = rows[0]
@@ -63,7 +57,7 @@ def test_every_built_in_architecture_is_listed_with_its_parameters(capsys):
     assert beta["default"] == "0.85" and beta["type"] == "float" and "Eq. 4.11" in beta["help"]
     sensors = next(p for p in fusion["parameters"] if p["name"] == "sensors")
     assert sensors["choices"] == ["short", "long"]
-    code, out, _ = cli(capsys, "architectures")
+    code, out, _ = cli("architectures")
     assert all(f"{name} (built in;" in out for name in BUILT_IN) and "beta    = 0.85 (float)" in out
 
 
@@ -83,15 +77,15 @@ def build_still(p, ekm_map=None, cfg=None, spec="still", robot=None):
                       step=lambda s, obs: (s, jnp.full(2, p.speed)), params=p, robot=robot)
 
 
-def test_an_architecture_registered_in_python_is_listed_spelled_and_run(registry, capsys):
+def test_an_architecture_registered_in_python_is_listed_spelled_and_run(registry, cli):
     ekm.register_architecture("still", StillParams, build_still, "stands still")
     assert "still" in ekm.architectures().names()
-    code, out, _ = cli(capsys, "architectures", "still")
+    code, out, _ = cli("architectures", "still")
     assert code == 0 and out.startswith("still (added; drives no EKM)") and "speed = 0 (float)  wheel speed, m/s" in out
     assert str(spec.parse_architecture("still:speed=0.01")) == "still:speed=0.01"
     outcome = ekm.run("open-arena", "still", time_limit=3)
     assert not outcome.reached and outcome.path_m == 0.0
-    code, _, err = cli(capsys, "run", "--world", "open-arena", "--architecture", "still:speed=fast")
+    code, _, err = cli("run", "--world", "open-arena", "--architecture", "still:speed=fast")
     assert code == 2 and err == "error: architecture still: speed: must be a number, got 'fast'\n"
 
 
@@ -128,10 +122,10 @@ def test_the_example_package_runs_through_ekm_compare_beside_fields(installed):
     assert rows["wander"]["success_rate"] == 1.0 and rows["fields"]["success_rate"] == 1.0
 
 
-def test_a_map_of_the_chart_an_architecture_does_not_drive_is_refused(capsys, tmp_path):
+def test_a_map_of_the_chart_an_architecture_does_not_drive_is_refused(cli, tmp_path):
     signed = ekm.load().save(tmp_path / "signed.npz")  # the shipped map: signed chart
-    code, _, err = cli(capsys, "run", "--world", "open-arena", "--architecture", "fusion", "--map", signed)
+    code, _, err = cli("run", "--world", "open-arena", "--architecture", "fusion", "--map", signed)
     assert code == 2 and err.count("\n") == 1
     assert "architecture fusion: drives a polar-chart map" in err and "ekm train --mapping indirect --chart polar" in err
-    code, _, err = cli(capsys, "compare", "--worlds", "open-arena", "--architectures", "fields,fusion", "--map", signed)
+    code, _, err = cli("compare", "--worlds", "open-arena", "--architectures", "fields,fusion", "--map", signed)
     assert code == 2 and "architecture fusion: drives a polar-chart map" in err

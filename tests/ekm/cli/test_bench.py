@@ -4,17 +4,11 @@ import json
 
 import pytest
 
-from ekm.cli import main
 
 
-def run_cli(capsys, *argv):
-    code = main([str(a) for a in argv])
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
-
-def test_bench_reports_jax_and_numpy_throughput(capsys):
-    code, stdout, _ = run_cli(capsys, "bench", "--json")
+def test_bench_reports_jax_and_numpy_throughput(cli):
+    code, stdout, _ = cli("bench", "--json")
     assert code == 0
     r = json.loads(stdout)
     assert r["jax_trial_steps_per_s"] > 0 and r["numpy_trial_steps_per_s"] > 0

@@ -5,13 +5,7 @@ import json
 
 import pytest
 
-from ekm.cli import main
 
-
-def cli(capsys, *argv):
-    code = main([str(a) for a in argv])
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
 
 ARGS = ["compare", "--worlds", "open-arena,three-rooms", "--architectures", "fusion,fields:form=thesis",
@@ -22,9 +16,9 @@ def strip(doc):
     return {k: v for k, v in doc.items() if k not in ("seconds", "workers")}
 
 
-def test_one_worker_or_two_give_the_same_json(capsys):
-    code1, out1, err1 = cli(capsys, *ARGS, "--workers", "1")
-    code2, out2, _ = cli(capsys, *ARGS, "--workers", "2")
+def test_one_worker_or_two_give_the_same_json(cli):
+    code1, out1, err1 = cli(*ARGS, "--workers", "1")
+    code2, out2, _ = cli(*ARGS, "--workers", "2")
     assert code1 == code2 == 0 and err1 == ""
     one, two = json.loads(out1), json.loads(out2)
     assert strip(one) == strip(two)
@@ -45,32 +39,32 @@ def test_one_worker_or_two_give_the_same_json(capsys):
     (["--worlds", "open-arena", "--architectures", "fusion", "--map", "missing.npz"], "missing.npz: no such map file"),
     (["--worlds", "open-arena", "--architectures", "fusion", "--plot", "x.jpg"], "expected a file name ending in .png"),
 ])
-def test_bad_input_is_one_line_before_any_run(capsys, monkeypatch, argv, message):
+def test_bad_input_is_one_line_before_any_run(cli, monkeypatch, argv, message):
     import evaluation.compare as comparison
 
     monkeypatch.setattr(comparison, "run_job", lambda job: pytest.fail("a run started"))
-    code, out, err = cli(capsys, "compare", *argv)
+    code, out, err = cli("compare", *argv)
     assert code == 2 and out == "" and message in err and err.count("\n") == 1
 
 
-def test_a_comparison_resumed_from_its_results_file_gives_the_same_json(capsys, tmp_path):
+def test_a_comparison_resumed_from_its_results_file_gives_the_same_json(cli, tmp_path):
     """Eight runs written to --out; the file cut after three runs and half a line (a crash); --resume makes
     the five missing runs, and the JSON is the uninterrupted one's; --from makes it again with no runs."""
     results = tmp_path / "r.jsonl"
-    code, out, _ = cli(capsys, *ARGS, "--workers", "1", "--out", results)
+    code, out, _ = cli(*ARGS, "--workers", "1", "--out", results)
     whole = json.loads(out)
     lines = results.read_text().splitlines(keepends=True)
     assert code == 0 and len(lines) == 1 + 8 and all(line.endswith("\n") for line in lines)
     results.write_text("".join(lines[:4]) + lines[4][:50])
-    code, out, _ = cli(capsys, *ARGS, "--workers", "1", "--resume", results)
+    code, out, _ = cli(*ARGS, "--workers", "1", "--resume", results)
     assert code == 0 and strip(json.loads(out)) == strip(whole) and len(results.read_text().splitlines()) == 9
-    code, out, _ = cli(capsys, "compare", "--from", results, "--json", "--plot", tmp_path / "again.png")
+    code, out, _ = cli("compare", "--from", results, "--json", "--plot", tmp_path / "again.png")
     assert code == 0 and strip(json.loads(out)) == strip(whole) and (tmp_path / "again.png").stat().st_size > 0
 
 
-def test_results_files_are_refused_in_one_line(capsys, tmp_path):
+def test_results_files_are_refused_in_one_line(cli, tmp_path):
     results = tmp_path / "r.jsonl"
-    code, _, _ = cli(capsys, "compare", "--worlds", "open-arena", "--architectures", "fusion", "--trials", "2",
+    code, _, _ = cli("compare", "--worlds", "open-arena", "--architectures", "fusion", "--trials", "2",
                      "--time-limit", "10", "--workers", "1", "--out", results)
     lines = results.read_text().splitlines(keepends=True)
     results.write_text("".join(lines[:2]))
@@ -81,6 +75,6 @@ def test_results_files_are_refused_in_one_line(capsys, tmp_path):
         (["--from", results], "holds 1 of the comparison's 2 runs; finish it with ekm compare … --resume"),
         (["--from", results, "--out", tmp_path / "x.jsonl"], "--from makes no runs"),
     ]:
-        code, out, err = cli(capsys, "compare", *argv)
+        code, out, err = cli("compare", *argv)
         assert code == 2 and message in err and err.count("\n") == 1, err
     assert results.read_text() == "".join(lines[:2])

@@ -7,42 +7,36 @@ import sys
 
 import numpy as np
 
-from ekm.cli import main
 from ekm.mapfile import load_maps
 
 
-def run_cli(capsys, *argv):
-    code = main([str(a) for a in argv])
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
-
-def test_evaluate_several_maps_on_one_plot(trained, capsys, tmp_path):
+def test_evaluate_several_maps_on_one_plot(cli, trained, capsys, tmp_path):
     d, out, _ = trained
     capsys.readouterr()
-    code, stdout, _ = run_cli(capsys, "train", "--mapping", "direct", "--neurons", "8", "--priority", "16",
+    code, stdout, _ = cli("train", "--mapping", "direct", "--neurons", "8", "--priority", "16",
                               "--chart", "polar", "--steps", "500", "--trials", "1", "--eval-every", "500", "--eval-targets", "5",
                               "--out", tmp_path / "dir.npz", "--json")
     assert code == 0
     saved = load_maps(tmp_path / "dir.npz").cfg
     assert (saved.priority, saved.chart) == (16, "polar")  # --priority and --chart reach the map and its file
-    code, stdout, _ = run_cli(capsys, "evaluate", out, tmp_path / "dir.npz", "--targets", "5", "--json",
+    code, stdout, _ = cli("evaluate", out, tmp_path / "dir.npz", "--targets", "5", "--json",
                               "--plot", tmp_path / "both.png", "--paths", tmp_path / "paths.png")
     assert code == 0
     maps = json.loads(stdout)["maps"]
     assert [m["mapping"] for m in maps] == ["indirect", "direct"]
     assert (tmp_path / "both.png").stat().st_size > 10_000
     assert (tmp_path / "paths.png").stat().st_size > 10_000
-    code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "5")
+    code, stdout, _ = cli("evaluate", out, "--targets", "5")
     assert code == 0 and "E =" in stdout and "P(eps)" in stdout
 
 
-def test_paths_of_a_map_that_never_comes_within_25_mm_are_drawn(capsys, tmp_path):
+def test_paths_of_a_map_that_never_comes_within_25_mm_are_drawn(cli, tmp_path):
     """An untrained map reaches no target: the paths plot says so instead of failing on the missing T/D."""
-    code, _, _ = run_cli(capsys, "train", "--mapping", "indirect", "--neurons", "4", "--steps", "1", "--trials", "1",
+    code, _, _ = cli("train", "--mapping", "indirect", "--neurons", "4", "--steps", "1", "--trials", "1",
                          "--eval-every", "1", "--eval-targets", "3", "--out", tmp_path / "raw.npz", "--json")
     assert code == 0
-    code, stdout, stderr = run_cli(capsys, "evaluate", tmp_path / "raw.npz", "--targets", "3", "--json",
+    code, stdout, stderr = cli("evaluate", tmp_path / "raw.npz", "--targets", "3", "--json",
                                    "--paths", tmp_path / "paths.png")
     result = json.loads(stdout)
     assert code == 0 and stderr == "" and (tmp_path / "paths.png").stat().st_size > 10_000

@@ -6,22 +6,16 @@ import json
 import numpy as np
 import pytest
 
-from ekm.cli import main
 from ekm.mapfile import load_maps
 
 TRAIN_KEYS = {"mapping", "neurons", "steps", "trials", "seconds", "curve", "out"}
 
 
-def run_cli(capsys, *argv):
-    code = main([str(a) for a in argv])
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
-
-def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
+def test_train_then_evaluate_gives_the_same_numbers(cli, trained, capsys):
     d, out, plot = trained
     capsys.readouterr()  # the fixture's own output
-    code, stdout, _ = run_cli(capsys, "train", "--mapping", "indirect", "--neurons", "8", "--steps", "1500",
+    code, stdout, _ = cli("train", "--mapping", "indirect", "--neurons", "8", "--steps", "1500",
                               "--trials", "2", "--eval-every", "500", "--eval-targets", "10", "--out", d / "again.npz",
                               "--json")
     assert code == 0
@@ -31,7 +25,7 @@ def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
     assert set(result["curve"][0]) >= {"step", "E_mm", "P", "T", "D"}
     assert out.stat().st_size > 0 and plot.stat().st_size > 10_000
     assert np.array_equal(load_maps(out).ekm.M, load_maps(d / "again.npz").ekm.M)  # the same seed, the same maps
-    code, stdout, _ = run_cli(capsys, "evaluate", out, "--targets", "10", "--json")
+    code, stdout, _ = cli("evaluate", out, "--targets", "10", "--json")
     assert code == 0
     ev = json.loads(stdout)
     assert list(ev)[:7] == ["E_mm", "P", "T", "D", "trials", "targets", "capped"]  # docs/design.md §6, then provenance
@@ -59,14 +53,14 @@ def test_train_then_evaluate_gives_the_same_numbers(trained, capsys):
     (["evaluate"], "required"),
     (["evaluate", "missing.npz", "--paths", "paths.jpg"], "ending in .png"),
 ])
-def test_bad_arguments_give_one_line_and_status_2(capsys, tmp_path, monkeypatch, argv, message):
+def test_bad_arguments_give_one_line_and_status_2(cli, tmp_path, monkeypatch, argv, message):
     monkeypatch.chdir(tmp_path)
-    code, stdout, stderr = run_cli(capsys, *argv)
+    code, stdout, stderr = cli(*argv)
     assert code == 2
     assert message in stderr and stderr.count("\n") == 1 and stdout == ""
     assert not (tmp_path / "x.npz").exists()
 
 
-def test_output_directory_is_refused_before_training(capsys, tmp_path):
-    code, _, stderr = run_cli(capsys, "train", "--mapping", "direct", "--out", tmp_path)
+def test_output_directory_is_refused_before_training(cli, tmp_path):
+    code, _, stderr = cli("train", "--mapping", "direct", "--out", tmp_path)
     assert code == 2 and "is a directory" in stderr
