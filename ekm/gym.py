@@ -102,8 +102,10 @@ class KheperaEnv(gymnasium.Env):
     def step(self, action):
         if self._done:
             raise RuntimeError("ekm/Khepera-v0: the run has ended; call reset()")
-        c = KHEPERA.max_wheel_speed
-        command = np.clip(np.asarray(action, dtype=float).reshape(2), -c, c)
+        command = np.asarray(action, dtype=float).reshape(2)
+        if not np.isfinite(command).all():
+            raise ValueError(f"ekm/Khepera-v0: the action must be two finite wheel speeds, got {command.tolist()}")
+        # beyond ±c* the motors clip it, as they clip an architecture's command: the same run either way
         try:
             self._raw = self._ticks.send(command)
         except StopIteration as finished:

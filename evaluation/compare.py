@@ -132,7 +132,7 @@ def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | Non
     (:mod:`ekm.interrupts`) raises KeyboardInterrupt here, between results; the caller stops the workers.
     """
     from collections import deque
-    from concurrent.futures import FIRST_COMPLETED, wait
+    from concurrent.futures import FIRST_COMPLETED, Future, wait
 
     from ekm import interrupts
     from evaluation.workers import InProcess
@@ -172,7 +172,15 @@ def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | Non
         interrupts.check()
         while queue and len(flying) < workers.window:
             i = queue.popleft()
-            flying[workers.submit(job_list[i])] = i
+            try:
+                flying[workers.submit(job_list[i])] = i
+            except Exception as exc:  # the pool broke while it started a worker
+                if not workers.lost(exc):
+                    raise
+                failed = Future()
+                failed.set_exception(exc)
+                flying[failed] = i
+                break
         finished, _ = wait(flying, timeout=0.5, return_when=FIRST_COMPLETED)
         lost = [settle(flying.pop(future), future) for future in finished]
         if any(lost) and workers.breaks_whole:
@@ -205,7 +213,8 @@ def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
 
 def _row(rs: list[dict]) -> dict:
     """The summary of runs ``rs``: ``trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions,
-    trapped, contact_s, failed`` — the means over the runs that reached the goal (None if none did)."""
+    trapped, contact_s, failed`` — the means over the runs that reached the goal (None if none did) — and
+    ``motion`` (:func:`motion_summary`)."""
     ok = [r for r in rs if r["reached"]]
     lo, hi = wilson(len(ok), len(rs))
     return {"trials": len(rs), "success_rate": round(len(ok) / len(rs), 4) if rs else None,
@@ -213,7 +222,20 @@ def _row(rs: list[dict]) -> dict:
             "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
             "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
             "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
-            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": sum("failed" in r for r in rs)}
+            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": sum("failed" in r for r in rs),
+            "motion": motion_summary(rs)}
+
+
+def motion_summary(rs: list[dict]) -> dict:
+    """Each motion measure (:mod:`evaluation.motion`) of runs ``rs`` as ``{"mean": m, "ci95": [lo, hi]}`` over
+    the runs that have it (all that ran; ``stop_distance_m``: those that stopped at the goal)."""
+    from evaluation.motion import KEYS, mean_ci
+
+    out = {}
+    for key in KEYS:
+        m, ci = mean_ci([r.get(key) for r in rs])
+        out[key] = {"mean": None if m is None else round(m, 5), "ci95": None if ci is None else [round(x, 5) for x in ci]}
+    return out
 
 
 def summarize(records: list[dict], worlds, labels) -> list[dict]:

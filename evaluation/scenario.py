@@ -143,14 +143,25 @@ class RunRecord:
         """The ``ekm run --json`` record: ``world, architecture, reached, time_s, path_m, collisions`` (contact
         episodes), ``checkpoints_reached, replans, trapped, final_distance_m``, then ``contact_s`` (time in
         contact), ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
-        stopped), ``seed``, ``map`` and ``trial`` (which map drove)."""
+        stopped), ``seed``, ``map`` and ``trial`` (which map drove), then how it moved
+        (:mod:`evaluation.motion`: ``command_change_mps, angular_accel_rms, stopped_s, turn_reversals_per_m,
+        path_ratio, stop_distance_m``)."""
         return {"world": self.world.name, "architecture": self.architecture, "reached": self.reached,
                 "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
                 "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,
                 "final_distance_m": round(self.final_distance_m, 5), "contact_s": round(self.contact_s, 3),
                 "arrived": self.arrived,
                 "recoveries": self.recoveries, "ended": self.ended, "seed": self.seed,
-                "map": self.map_source or None, "trial": self.trial}
+                "map": self.map_source or None, "trial": self.trial, **self.motion()}
+
+    def motion(self) -> dict:
+        """How the run moved (:func:`evaluation.motion.measures`), the planner's first route as the reference."""
+        from evaluation import motion
+
+        route = motion.route_length(self.poses[0, :2], self.plans[0].checkpoints) if self.plans and len(self.poses) \
+            else 0.0
+        return motion.measures([c[1:] for c in self.commands], self.times, self.poses, self.period,
+                               self.world.goal_at, route, self.arrived)
 
 
 def mover_radius(shape) -> float:

@@ -87,9 +87,11 @@ class LocalPool:
         return self._pool.submit(self.run, job)
 
     def lost(self, exc: BaseException) -> bool:
+        """A broken pool, or one whose pipes closed while it started a worker (a run's own errors never get
+        here: :func:`evaluation.compare.run_job` records them)."""
         from concurrent.futures.process import BrokenProcessPool
 
-        return isinstance(exc, BrokenProcessPool)
+        return isinstance(exc, (BrokenProcessPool, OSError))
 
     def renew(self) -> None:
         """Drop the broken pool (and any of its processes still alive); the next run starts a new one."""

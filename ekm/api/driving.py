@@ -32,7 +32,9 @@ class Outcome(Result):
     ``checkpoints_reached``, ``replans``, ``trapped`` (the monitor saw no progress), ``final_distance_m``
     to the goal, ``contact_s`` the time spent in contact; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
     stopped), ``seed``, ``map`` and ``trial`` (which map drove; None for architectures without one),
-    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`). ``record`` holds the traces (poses every
+    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`), and how it moved (:mod:`evaluation.motion`:
+    ``command_change_mps``, ``angular_accel_rms``, ``stopped_s``, ``turn_reversals_per_m``, ``path_ratio``,
+    ``stop_distance_m``). ``record`` holds the traces (poses every
     sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws the run
     to scale (Fig. 6.3–6.8).
     """
@@ -57,6 +59,12 @@ class Outcome(Result):
     config: object = field(repr=False)
     record: object = field(repr=False, compare=False)
     spec: object = field(repr=False, compare=False)
+    command_change_mps: float | None = None
+    angular_accel_rms: float | None = None
+    stopped_s: float | None = None
+    turn_reversals_per_m: float | None = None
+    path_ratio: float | None = None
+    stop_distance_m: float | None = None
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance

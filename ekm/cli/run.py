@@ -92,6 +92,10 @@ def run(args) -> None:
     print(f"  {status}: {out['ended']} after {out['time_s']:.1f} s, path {out['path_m']:.2f} m, "
           f"{out['collisions']} collisions, final distance {1000 * out['final_distance_m']:.1f} mm")
     print(f"  checkpoints reached {out['checkpoints_reached']}, replans {out['replans']}, recoveries {out['recoveries']}")
+    ratio = "" if out["path_ratio"] is None else f", path {out['path_ratio']:.2f} x the planned route"
+    print(f"  motion: command change {out['command_change_mps'] * 1000:.1f} mm/s a tick, angular acceleration "
+          f"{out['angular_accel_rms']:.2f} rad/s^2 RMS, stopped {out['stopped_s']:.1f} s, "
+          f"{out['turn_reversals_per_m']:.1f} turn reversals per m{ratio}")
     for path in (plot, gif):
         if path:
             print(f"  written to {path}")

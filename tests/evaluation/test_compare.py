@@ -106,6 +106,19 @@ def test_a_run_that_raises_is_failed_with_its_exception_in_one_line_naming_the_w
     assert record["failed"] == "raises: RuntimeError: boom" and record["ended"] == "failed"
 
 
+def test_a_pool_that_breaks_while_a_worker_starts_is_renewed_and_the_run_tried_again():
+    class BreaksOnSubmit(FakeWorkers):
+        def submit(self, job):
+            if self.deaths.get(("submit", job.trial), 0) > 0:
+                self.deaths[("submit", job.trial)] -= 1
+                raise Lost("handle is closed")
+            return super().submit(job)
+
+    workers = BreaksOnSubmit({("submit", 1): 1})
+    records = compare(fake_jobs(3), workers)
+    assert [r["trial"] for r in records] == [0, 1, 2] and all(r["reached"] for r in records) and workers.renewed == 1
+
+
 def test_runs_already_done_are_not_run_again():
     workers, seen = FakeWorkers({}), []
     records = compare(fake_jobs(4), workers, lambda i, r: seen.append(i), done={0: {"trial": 0, "old": True},
