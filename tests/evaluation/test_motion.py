@@ -44,17 +44,18 @@ def test_a_robot_standing_away_from_the_goal_hesitates_and_one_at_the_goal_does_
 
 
 def test_turning_left_then_right_then_left_is_two_reversals_and_a_steady_turn_accelerates_nothing():
-    # heading rates +1, +1, −1, −1, +1 rad/s for one tick each, driving 0.1 m a tick: 0.5 m of path
-    rates = [1.0, 1.0, -1.0, -1.0, 1.0]
+    # heading rates +1, +1, +1, −1, −1, +1 rad/s for one tick each, driving 0.1 m a tick: 0.6 m of path;
+    # three ticks keep their direction, two reverse it
+    rates = [1.0, 1.0, 1.0, -1.0, -1.0, 1.0]
     heading = np.concatenate([[0.0], np.cumsum(rates) * PERIOD])
-    xy = np.stack([0.1 * np.arange(6), np.zeros(6)], axis=1)
+    xy = np.stack([0.1 * np.arange(7), np.zeros(7)], axis=1)
     poses = np.column_stack([xy, heading])
-    m = measures([], PERIOD * np.arange(6), poses, PERIOD, goal_at((2.0, 0.0)), 0.5, False)
-    assert m["turn_reversals_per_m"] == pytest.approx(2 / 0.5)
-    # Δω per tick: 0, −2, 0, +2 rad/s → α = 0, −2/0.128, 0, 2/0.128: RMS = sqrt(2 · (2/0.128)² / 4)
-    assert m["angular_accel_rms"] == pytest.approx(math.sqrt(2 * (2 / PERIOD) ** 2 / 4), rel=1e-3)
-    steady = np.column_stack([xy, 0.5 * PERIOD * np.arange(6)])
-    assert measures([], PERIOD * np.arange(6), steady, PERIOD, goal_at((2.0, 0.0)), 0.5, False)[
+    m = measures([], PERIOD * np.arange(7), poses, PERIOD, goal_at((2.0, 0.0)), 0.6, False)
+    assert m["turn_reversals_per_m"] == pytest.approx(2 / 0.6, abs=1e-3)
+    # Δω per tick: 0, 0, −2, 0, +2 rad/s → α = 0, 0, −2/0.128, 0, 2/0.128: RMS = sqrt(2 · (2/0.128)² / 5)
+    assert m["angular_accel_rms"] == pytest.approx(math.sqrt(2 * (2 / PERIOD) ** 2 / 5), rel=1e-3)
+    steady = np.column_stack([xy, 0.5 * PERIOD * np.arange(7)])
+    assert measures([], PERIOD * np.arange(7), steady, PERIOD, goal_at((2.0, 0.0)), 0.6, False)[
         "angular_accel_rms"] == pytest.approx(0.0, abs=1e-9)
 
 
