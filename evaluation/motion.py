@@ -11,7 +11,8 @@ tick do not pass for jerkiness:
   :data:`AT_GOAL_M` from the goal (s) — turning on the spot counts as stopped;
 - ``turn_reversals_per_m``: changes of the turning direction (ω beyond ±:data:`TURNING_RADPS`) per metre of
   path;
-- ``path_ratio``: path length over the planner's first route (start, checkpoints, goal; the straight legs);
+- ``path_ratio``: path length over the planner's first route (start, checkpoints, goal; the straight legs,
+  :func:`planner.checkpoints.path_length`);
 - ``stop_distance_m``: distance from the goal where the robot stopped there, None if it never did.
 """
 
@@ -20,6 +21,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from planner.checkpoints import path_length
 
 #: Slower than this (m/s) the robot is stopped: 2 % of c*, a tenth of the slowest wheel command (8 mm/s).
 STOPPED_MPS = 0.002
@@ -41,12 +44,6 @@ def at_ticks(times: np.ndarray, poses: np.ndarray, period: float) -> np.ndarray:
     return poses[index]
 
 
-def route_length(start, checkpoints) -> float:
-    """Length (m) of the straight legs start → checkpoints (the goal last)."""
-    points = np.vstack([np.asarray(start, float)[None, :2], np.asarray(checkpoints, float).reshape(-1, 2)])
-    return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
-
-
 def measures(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool) -> dict:
     """The measures of the module docstring for one run. ``commands``: ``(n, 2)`` wheel commands (m/s), one
     a tick; ``times`` ``(S,)`` and ``poses`` ``(S, 3)`` the traced poses; ``goal_at(t)`` the goal (x, y) at
@@ -64,7 +61,7 @@ def measures(commands, times, poses, period: float, goal_at, route_m: float, arr
     stopped = float(np.sum((steps / period < STOPPED_MPS) & away) * period)
     turning = np.sign(omega[np.abs(omega) > TURNING_RADPS])
     reversals = int(np.sum(turning[1:] != turning[:-1])) if len(turning) > 1 else 0
-    path = float(np.linalg.norm(np.diff(np.asarray(poses, float)[:, :2], axis=0), axis=1).sum()) if len(poses) else 0.0
+    path = path_length(poses[0], np.asarray(poses, float)[1:, :2]) if len(poses) else 0.0
     end = np.asarray(poses, float)[-1, :2] if len(poses) else np.zeros(2)
     return {"command_change_mps": round(change, 5),
             "angular_accel_rms": round(float(np.sqrt(np.mean(accel ** 2))) if len(accel) else 0.0, 4),

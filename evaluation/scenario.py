@@ -158,8 +158,9 @@ class RunRecord:
         """How the run moved (:func:`evaluation.motion.measures`), the planner's first route as the reference."""
         from evaluation import motion
 
-        route = motion.route_length(self.poses[0, :2], self.plans[0].checkpoints) if self.plans and len(self.poses) \
-            else 0.0
+        from planner.checkpoints import path_length
+
+        route = path_length(self.poses[0, :2], self.plans[0].checkpoints) if self.plans and len(self.poses) else 0.0
         return motion.measures([c[1:] for c in self.commands], self.times, self.poses, self.period,
                                self.world.goal_at, route, self.arrived)
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from planner.checkpoints import path_length
 from planner.plan import Plan
 from robots.plot import save_figure
 
@@ -58,10 +59,6 @@ def route_through_cells(plan: Plan) -> np.ndarray | None:
     return None if found is None else found[0]
 
 
-def polyline_length(points: np.ndarray) -> float:
-    return float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
-
-
 def draw_plan(ax, plan: Plan, world=None, t: float = 0.0) -> None:
     """Draw ``plan`` (and, if given, the walls and known obstacles of ``world`` at ``t``) on ``ax``."""
     from matplotlib.collections import LineCollection
@@ -91,7 +88,7 @@ def draw_plan(ax, plan: Plan, world=None, t: float = 0.0) -> None:
     through = route_through_cells(plan)
     if through is not None and plan.rule != "visible":
         ax.plot(*through.T, "--", color="0.1", lw=1.0, zorder=4,
-                label=f"route through the cells {polyline_length(through):.2f} m (their shared edges)")
+                label=f"route through the cells {path_length(through[0], through[1:]):.2f} m (their shared edges)")
     ax.plot(*plan.checkpoints[:-1].T, "o", mfc="white", mec="crimson", mew=1.5, ms=7, zorder=5,
             label=f"checkpoints ({len(plan.checkpoints) - 1} + goal)")
     ax.text(*plan.start, "X", color="k", fontsize=12, fontweight="bold", ha="center", va="center", zorder=6)

@@ -56,11 +56,12 @@ def run(args) -> None:
     print(f"  checkpoint path {p.length:.3f} m ({p.rule} checkpoints: the straight legs start - checkpoints - goal), "
           f"planned in {seconds:.3f} s")
     if p.rule != "visible":
-        from planner.plot import polyline_length, route_through_cells
+        from planner.checkpoints import path_length
+        from planner.plot import route_through_cells
 
         through = route_through_cells(p)
         if through is not None:
-            print(f"  route through the cells {polyline_length(through):.3f} m (the thesis's legs may cross walls; "
+            print(f"  route through the cells {path_length(through[0], through[1:]):.3f} m (the thesis's legs may cross walls; "
                   f"the reactive layer goes round)")
     if args.plot:
         print(f"  plot written to {args.plot}")

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from evaluation.motion import at_ticks, mean_ci, measures, route_length
+from evaluation.motion import at_ticks, mean_ci, measures
+from planner.checkpoints import path_length
 
 PERIOD = 0.128
 
@@ -60,7 +61,7 @@ def test_turning_left_then_right_then_left_is_two_reversals_and_a_steady_turn_ac
 
 
 def test_the_path_ratio_is_the_path_over_the_planned_route():
-    assert route_length((0.0, 0.0), [(0.3, 0.4), (0.3, 1.4)]) == pytest.approx(1.5)
+    assert path_length((0.0, 0.0), [(0.3, 0.4), (0.3, 1.4)]) == pytest.approx(1.5)
     t, poses = straight(10, 0.1)  # 0.128 m of path
     assert measures([], t, poses, PERIOD, goal_at((1.0, 0.0)), 0.064, False)["path_ratio"] == pytest.approx(2.0)
 

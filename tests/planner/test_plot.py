@@ -4,7 +4,8 @@ beside the thesis's straight checkpoint legs, which may."""
 import numpy as np
 
 from planner.plan import plan
-from planner.plot import polyline_length, route_through_cells
+from planner.checkpoints import path_length
+from planner.plot import route_through_cells
 from robots.worldfile import parse_world
 
 #: Start and goal in one L-shaped slippery cell, a wall between them (the issue's case).
@@ -29,8 +30,8 @@ def test_the_route_through_the_cells_goes_round_the_wall_the_thesis_legs_cross()
     assert np.allclose(route[0], (0.15, 0.15)) and np.allclose(route[-1], (0.8, 0.85))
     assert not any(crosses(route[i], route[i + 1], *w) for i in range(len(route) - 1) for w in walls)
     # round the corner at (0.3, 0.7) with the robot's 25 mm: at least up 0.55 m from y 0.15, across 0.5 m
-    assert polyline_length(route) > 0.55 + 0.5 - 0.05
+    assert path_length(route[0], route[1:]) > 0.55 + 0.5 - 0.05
 
 
-def test_polyline_length_is_the_sum_of_its_legs():
-    assert polyline_length(np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]])) == 6.0
+def test_the_route_length_is_the_sum_of_its_legs():
+    assert path_length((0.0, 0.0), np.array([[3.0, 4.0], [3.0, 5.0]])) == 6.0
