@@ -19,7 +19,8 @@ def command(sub, name: str, summary: str, examples: list[str], *, usage: str | N
     """The parser of one sub-command: ``summary`` (one line) as its entry in ``ekm --help`` and its description,
     and an epilog of ``examples`` (then ``more``), printed as written."""
     epilog = "examples:\n" + "\n".join(f"  {e}" for e in examples) + (f"\n\n{more}" if more else "")
-    return sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".", usage=usage,
+    # argparse %-formats a sub-command's help (``ekm --help``), so "95 % intervals" must reach it as "95 %% …"
+    return sub.add_parser(name, help=summary.replace("%", "%%"), description=summary[0].upper() + summary[1:] + ".", usage=usage,
                           epilog=epilog, formatter_class=argparse.RawDescriptionHelpFormatter)
 
 

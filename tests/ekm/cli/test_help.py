@@ -41,3 +41,15 @@ def test_train_usage_shows_what_it_requires_and_run_points_to_the_architectures(
             main([name, "--help"])
         out = " ".join(capsys.readouterr().out.split())
         assert "ekm architectures" in out and all(a in out for a in ("fusion", "fields", "samba", "schema"))
+
+
+
+def test_the_top_level_help_lists_every_command_with_its_summary(capsys):
+    """``ekm --help`` lists every command; a summary holding "95 %" once crashed it, since argparse
+    %-formats a sub-command's help."""
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert done.value.code == 0
+    assert "with 95 % intervals" in text
+    assert all(name in text for name in subparsers())
