@@ -19,6 +19,7 @@ from robots.controllers import fields as neural_fields
 from robots.controllers import fusion
 from robots.controllers import samba
 from robots.controllers import schema as motor_schemas
+from robots.controllers import damn, deliberation, subsumption
 
 
 @dataclass(frozen=True)
@@ -56,6 +57,15 @@ ARCHITECTURES: dict[str, Architecture] = {
                           "Samba action maps: MAV(Goto, filtered Avoid), heaviest action (Riekki 1999)", None),
     "schema": Architecture("schema", motor_schemas.SchemaParams, motor_schemas.build,
                            "motor schemas: move-to-goal + avoid-obstacle + noise vectors, summed (Arkin ch. 4.4)", None),
+    "subsumption": Architecture("subsumption", subsumption.SubsumptionParams, subsumption.build,
+                                "subsumption: layered behaviours, suppression and inhibition, 9 responses "
+                                "(Brooks; Arkin 4.3)", None),
+    "damn": Architecture("damn", damn.DamnParams, damn.build,
+                         "DAMN: behaviours vote over 9 turns and 6 speeds, two winner-take-all arbiters "
+                         "(Rosenblatt; Arkin 4.5.5)", None),
+    "deliberation": Architecture("deliberation", deliberation.DeliberationParams, deliberation.build,
+                                 "reactive deliberation: behaviours bid for one action schema, the deliberator "
+                                 "interrupts (Sahota ch. 3)", None),
 }
 
 #: The entry-point group through which an installed package adds architectures: each entry point names an

@@ -1,0 +1,101 @@
+"""What the discrete-response architectures share (:mod:`~robots.controllers.subsumption`,
+:mod:`~robots.controllers.damn`, :mod:`~robots.controllers.deliberation`): a response as a forward speed and a
+turn rate, the IR returns as points in the robot's frame, the corridor the body sweeps ahead, and where a
+point lies from the robot.
+
+Arkin (ch. 3.3, §3.4.3) calls an encoding *discrete* when a behaviour chooses among "a prespecified set of
+possible responses"; here every such response is a pair (v, ω) — forward speed (m/s) and turn rate (rad/s,
++ = left) — turned into wheel speeds by :func:`wheels`, the one map from (v, ω) to the differential drive.
+
+**What they sense** (:func:`sense`): the IR hits of this tick and those remembered in the world frame
+(:mod:`~robots.controllers.memory`, as Samba and the extended fields keep them), and the nearest surface
+point of each declared moving obstacle — the long ring's rays are 30° apart, so a box corner between two of
+them is seen only when it touches the body; the memory keeps what a ray saw a moment ago. Brooks's robots
+kept no such map ("the world is its own best model"); here every architecture of a comparison sees through
+the same memory, so the comparison weighs how they *respond*, not what they see.
+"""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+
+from robots.controllers import memory as mem
+from robots.controllers.base import hit_points
+from robots.params import KHEPERA, RobotParams
+
+
+def wheels(v, omega, robot: RobotParams = KHEPERA):
+    """Wheel speeds ``(2,)`` (m/s, left then right) of forward speed ``v`` (m/s) and turn rate ``omega`` (rad/s):
+    ``v ∓ ω b / 2`` with b the wheel base; when a wheel would exceed c*, both are scaled down together, so the
+    response keeps its curvature."""
+    half = 0.5 * robot.wheel_base * jnp.asarray(omega, jnp.float32)
+    pair = jnp.stack([v - half, v + half]).astype(jnp.float32)
+    peak = jnp.max(jnp.abs(pair))
+    return pair * jnp.minimum(1.0, robot.max_wheel_speed / jnp.maximum(peak, 1e-12))
+
+
+def wrap(angle):
+    """``angle`` (rad) wrapped into [−π, π)."""
+    return (angle + jnp.pi) % (2.0 * jnp.pi) - jnp.pi
+
+
+def ir_points(readings, angles, radius: float = KHEPERA.radius):
+    """What each sensor sees, in the robot's frame (x ahead, y left): points ``(m, 2)`` (m) and the mask ``(m,)``
+    of the sensors that see something (:func:`~robots.controllers.base.hit_points` at the origin)."""
+    return hit_points(jnp.zeros(3, jnp.float32), jnp.asarray(readings, jnp.float32), angles, radius, xp=jnp)
+
+
+def in_the_way(points, seen, radius: float, margin: float, reach: float):
+    """Which ``points`` ``(m, 2)`` (robot frame) lie in the corridor the body sweeps driving straight on: ahead
+    of the centre, within ``radius + reach`` of it along x, and within ``radius + margin`` of the centre line.
+    A jamb 4 cm to the side of an 8 cm doorway's centre line is not in a 2.5 cm robot's way with a 0.5 cm margin."""
+    x, y = points[:, 0], points[:, 1]
+    return seen & (x > 0.0) & (x <= radius + reach) & (jnp.abs(y) < radius + margin)
+
+
+def free_ahead(points, valid, radius: float, clearance: float):
+    """How far (m) the body drives straight on (along +x of the robot frame) before it comes within ``clearance``
+    of one of the valid ``points`` ``(n, 2)``: inf when it never does, 0 when one is that close already."""
+    x, y = points[:, 0], points[:, 1]
+    half = radius + clearance
+    across = valid & (jnp.abs(y) < half) & (x > 0.0)
+    reach = x - jnp.sqrt(jnp.maximum(half ** 2 - y ** 2, 0.0))
+    return jnp.min(jnp.where(across, jnp.maximum(reach, 0.0), jnp.inf))
+
+
+def rotate(points, angle):
+    """``points`` ``(n, 2)`` in a frame turned by ``angle`` (rad, + = left): what lies at ``angle`` is then ahead."""
+    c, s = jnp.cos(angle), jnp.sin(angle)
+    return jnp.stack([c * points[:, 0] + s * points[:, 1], -s * points[:, 0] + c * points[:, 1]], axis=-1)
+
+
+def bearing(pose, point):
+    """Where the world point ``point`` ``(2,)`` lies from a robot at ``pose`` (x, y, θ): (α, d), α in rad
+    (+ = left of the heading), d in m — the u_p of ch. 4.1."""
+    delta = jnp.asarray(point, jnp.float32) - pose[:2]
+    return wrap(jnp.arctan2(delta[1], delta[0]) - pose[2]), jnp.sqrt(jnp.sum(jnp.square(delta)))
+
+
+def world_point(pose, target):
+    """The world position ``(2,)`` of a point at u_p = (α, d) from a robot at ``pose`` (the inverse of
+    :func:`bearing`)."""
+    phi = pose[2] + target[0]
+    return pose[:2] + target[1] * jnp.stack([jnp.cos(phi), jnp.sin(phi)])
+
+
+def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, merge: float, memory_s: float):
+    """The memory after this tick's IR (returns on a declared mover left to its marker) and every obstacle point
+    in the robot's frame: ``(K + k, 2)`` points (the K remembered, then the nearest surface point of each of the
+    k declared movers) and their mask."""
+    pose = jnp.asarray(obs.pose, jnp.float32)
+    markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
+    readings = mem.off_movers(pose, jnp.asarray(obs.ir, jnp.float32), angles, markers, radius=radius)
+    memory = mem.update(memory, pose, readings, angles, obs.t, radius=radius, range_m=range_m, merge=merge,
+                        forget_after=memory_s)
+    rel = jnp.concatenate([memory.points - pose[:2], markers[:, :2] - pose[:2]], axis=0)
+    dist = jnp.sqrt(jnp.sum(jnp.square(rel), axis=1))
+    surface = jnp.concatenate([jnp.zeros(memory.points.shape[0], jnp.float32), markers[:, 4]])
+    rel = rel * (jnp.maximum(dist - surface, 0.0) / jnp.maximum(dist, 1e-9))[:, None]
+    points = rotate(rel, pose[2])
+    valid = jnp.concatenate([jnp.isfinite(memory.seen), jnp.ones(markers.shape[0], bool)])
+    return memory, points, valid

@@ -1,0 +1,101 @@
+"""Subsumption (Arkin §4.3): which layer speaks, which suppresses which, what collide inhibits and when back
+out starts — on hand-built observations, with the answers worked out from the module's rules."""
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+from robots.controllers import subsumption as sub
+from robots.controllers.spec import parse_architecture
+from robots.params import KHEPERA, LONG_RANGE
+from tests.robots.controllers.observations import long_ring, observation
+
+P = sub.SubsumptionParams()
+ANGLES = jnp.asarray(LONG_RANGE.angles, jnp.float32)
+layers = jax.jit(sub.layers, static_argnames=("p", "radius", "range_m"))
+
+
+def tick(ir, target=(0.0, 0.3), state=None, p=P, **kw):
+    state = sub.init(p) if state is None else state
+    return layers(state, observation(ir, target=target, **kw), ANGLES, p, KHEPERA.radius, LONG_RANGE.range_m)
+
+
+def wheels(ir, target=(0.0, 0.3), **kw):
+    ctrl = parse_architecture("subsumption").build()
+    return np.asarray(ctrl.step(ctrl.init(), observation(ir, target=target, **kw))[1])
+
+
+def test_with_nothing_sensed_goto_suppresses_wander_and_cruises():
+    _, t = tick(long_ring())
+    assert int(t.layer) == sub.LAYERS.index("goto") and int(t.response) == sub.CRUISE and int(t.avoid) == -1
+    np.testing.assert_allclose(wheels(long_ring()), [0.16, 0.16], atol=1e-6)
+
+
+@pytest.mark.parametrize("alpha, d, final, response", [
+    (0.0, 0.3, False, sub.CRUISE), (0.3, 0.3, False, sub.ARC_LEFT), (-0.3, 0.3, False, sub.ARC_RIGHT),
+    (0.8, 0.3, False, sub.SPIN_LEFT), (-0.8, 0.3, False, sub.SPIN_RIGHT),  # |α| > spin_above 0.6
+    (0.0, 0.03, False, sub.SLOW), (0.15, 0.03, False, sub.SLOW),  # within slow_within no arcs; |α| < fine 0.2
+    (0.3, 0.03, False, sub.SPIN_LEFT), (0.0, 0.008, False, sub.CREEP),  # |α| > fine; within creep_within
+    (0.0, 0.002, True, sub.STOP), (0.0, 0.002, False, sub.CREEP)])  # stops only at the goal
+def test_goto_rules(alpha, d, final, response):
+    _, t = tick(long_ring(), target=(alpha, d), final=final)
+    assert int(t.goto) == response and int(t.response) == response
+
+
+def test_avoid_suppresses_goto_and_turns_away_from_the_side_that_senses():
+    # 2 cm out on the 30°-left sensor: the point (0.039, 0.0225) is in the corridor (|y| < 2.5 + 1.2 cm, 1.4 cm ahead)
+    _, t = tick(long_ring(s1=0.02))
+    assert int(t.layer) == 0 and int(t.avoid) == sub.SPIN_RIGHT and int(t.goto) == sub.CRUISE
+    np.testing.assert_allclose(wheels(long_ring(s1=0.02)), [1.5 * 0.0265, -1.5 * 0.0265], atol=1e-6)
+    _, t = tick(long_ring(s11=0.02))
+    assert int(t.avoid) == sub.SPIN_LEFT
+    # a jamb straight beside the body is not in its way: goto drives on
+    _, t = tick(long_ring(s3=0.005, s9=0.005))
+    assert int(t.layer) == 2 and int(t.response) == sub.CRUISE
+
+
+def test_goto_suppresses_what_avoid_sees_beyond_the_checkpoint():
+    # a point 3 cm ahead of the body: within near (4 cm), so avoid turns away ...
+    _, t = tick(long_ring(s0=0.03))
+    assert int(t.layer) == 0 and int(t.response) == sub.SPIN_RIGHT  # no side senses more: right
+    # ... but with the goal 4 cm from the centre, avoid's reach is 1.5 cm and the point lies beyond the goal
+    _, t = tick(long_ring(s0=0.03), target=(0.0, 0.04), final=True)
+    assert int(t.avoid) == -1 and int(t.layer) == 2 and int(t.response) == sub.SLOW
+
+
+def test_collide_inhibits_forward_motion_whatever_layer_drives():
+    # 8 mm ahead, goal 3 cm from the centre: avoid's reach (5 mm) misses it, goto sends slow, collide (1 cm) halts it
+    _, t = tick(long_ring(s0=0.008), target=(0.0, 0.03), final=True)
+    assert int(t.response) == sub.SLOW and bool(t.halted)
+    np.testing.assert_allclose(wheels(long_ring(s0=0.008), target=(0.0, 0.03), final=True), [0.0, 0.0], atol=1e-9)
+
+
+def test_backout_starts_after_three_avoid_episodes_without_progress_then_turns_away():
+    state, dt = sub.init(P), 0.128
+    seen = [False, True, False, True, False, True]  # three episodes of avoid, the checkpoint never closer
+    for k, on in enumerate(seen):
+        state, t = tick(long_ring(s1=0.02) if on else long_ring(), state=state, t=k * dt)
+        assert int(t.backout) == (-1 if k < 5 else sub.BACK)
+    assert int(t.layer) == 3 and int(t.response) == sub.BACK
+    state, t = tick(long_ring(), state=state, t=5 * dt + 1.1)  # back_s 1.024 over: the spin away from the left
+    assert int(t.layer) == 3 and int(t.response) == sub.SPIN_RIGHT
+    _, t = tick(long_ring(), state=state, t=5 * dt + 2.1)  # turn_s over: goto again
+    assert int(t.layer) == 2
+
+
+def test_progress_resets_the_count_of_avoid_episodes():
+    state = sub.init(P)
+    for k, (on, d) in enumerate([(False, 0.3), (True, 0.3), (False, 0.28), (True, 0.28), (False, 0.26), (True, 0.26)]):
+        state, t = tick(long_ring(s1=0.02) if on else long_ring(), target=(0.0, d), state=state, t=k * 0.128)
+    assert int(t.backout) == -1 and int(t.layer) == 0
+
+
+@pytest.mark.parametrize("mover, response", [
+    ((0.46, 0.47, 0.0, 0.1, 0.02), sub.CRUISE),  # from behind-right across the robot's line: drive on, out of it
+    ((0.45, 0.5, 0.1, 0.0, 0.02), sub.SPIN_LEFT),  # straight from behind: the way out is its left, 90° off
+    ((0.5, 0.45, 0.0, 0.1, 0.02), sub.BACK),  # straight from the right: its left is behind the robot
+    ((0.5, 0.45, 0.0, -0.1, 0.02), -1)])  # moving away: no threat
+def test_runaway_gets_out_of_the_line_of_a_closing_mover(mover, response):
+    _, t = tick(long_ring(), markers=[mover])
+    assert int(t.avoid) == response
