@@ -18,8 +18,9 @@ schema          parameters                     every tick
                                                the last → stop
 =============== ============================== ================================================================
 
-Sahota's *collision detection subsystem* runs beside every schema: a point in the corridor the body sweeps
-within ``halt`` ahead (behind, when backing) hands control to stop.
+Sahota's *collision detection subsystem* runs beside every schema: a point within ``halt`` of the body on
+the side it drives to (ahead of the axle, or behind it when backing), or in the corridor the body sweeps
+(half-width radius + ``margin``) within ``halt`` + one tick's travel, hands control to stop.
 
 **The deliberator** (§3.3, Table 4's form): each behaviour selects a schema, computes its parameters and
 bids in [0, 10] — a base bid plus and minus weighted factors in [0, 1] (§4.2.3); the highest bid wins, and
@@ -32,19 +33,23 @@ declared movers, :func:`~robots.controllers.discrete.sense`):
 behaviour           schema             parameters                            bid
 =================== ================== ===================================== ===================================
 go to checkpoint    servo              none                                  5 − 5 b
-go round            follow path        a detour point ``detour`` beside the  2 + 6 b
-                                       blockage, on the freer side, then
-                                       the checkpoint
-back away           follow path,       a point ``backoff`` straight behind   9 when a point is within ``close``
-                    backwards                                                of the body ahead, else 0
+go round            follow path        a detour point ``detour`` (or twice   2 + 6 b
+                                       that) beside the blockage, on the
+                                       freer side, then the checkpoint
+back away           follow path        a point ``backoff`` straight behind   9 when a point is within ``close``
+                    (backwards, or     (backwards) or, from a declared       of the body ahead, or a declared
+                    facing the way     mover closing within ``wait_within``,  mover closes within
+                    out)               out of its line                       ``wait_within``; else 0
 wait                stop               none                                  7 − 7 · (s waited / ``patience``)
-                                                                             when a declared mover is in the way
-                                                                             within ``wait_within``, else 0
+                                                                             when a declared mover crosses the
+                                                                             way within ``wait_within``, else 0
 =================== ================== ===================================== ===================================
 
 The winning behaviour's action replaces the executor's when it differs (another behaviour, or the ruling
-one's schema has ended); a ruling behaviour that wins again keeps its action running — a path is not
-replanned mid-way. Wait's bid falls the longer it waits (§3.3.2: "boredom").
+one's schema has ended); a ruling behaviour that wins again keeps its action running unless the way to its
+path's next waypoint has become blocked — then it plans the action afresh (§3.3.1: the ruling behaviour
+"may want to modify the current action to reflect changes in the environment"). Wait's bid falls the
+longer it waits (§3.3.2: "boredom").
 
 **Sahota's three levels** (§4.3, the LCI Cup's controllers), the parameter ``level``:
 
@@ -70,7 +75,8 @@ import jax.numpy as jnp
 
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles
-from robots.controllers.discrete import bearing, free_ahead, in_the_way, rotate, sense, wheels, world_point, wrap
+from robots.controllers.discrete import (bearing, free_ahead, in_the_way, rotate, sense, way_out, wheels, world_point,
+                                         wrap)
 from robots.params import KHEPERA, RobotParams
 
 #: Action schemas, by index.
@@ -100,9 +106,10 @@ class DeliberationParams:
     brake_s: float = field(default=0.5, metadata={"help": "servo, follow path: speed is distance / brake_s, at most c*"})
     stop_within: float = field(default=0.003, metadata={"help": "servo: m from the goal within which it stops"})
     waypoint: float = field(default=0.015, metadata={"help": "follow path: m within which a waypoint is passed"})
-    halt: float = field(default=0.008, metadata={"help": "collision detection: m ahead (behind, backing) that stops"})
+    halt: float = field(default=0.01, metadata={"help": "collision detection: m from the body (ahead, or behind when "
+                                                        "backing) that stops it, plus one tick's travel straight on"})
     margin: float = field(default=0.005, metadata={"help": "collision detection: m added to the body radius for the "
-                                                           "corridor's half-width"})
+                                                           "half-width of the corridor it sweeps"})
     clearance: float = field(default=0.01, metadata={"help": "bids: m from the body surface that blocks the way"})
     detour: float = field(default=0.08, metadata={"help": "go round: m beside the blockage of the detour point"})
     backoff: float = field(default=0.05, metadata={"help": "back away: m it backs"})
@@ -182,14 +189,15 @@ def blocked_share(points, valid, target, p: DeliberationParams, radius: float):
 
 
 def detour_point(points, valid, target, free, pose, p: DeliberationParams, radius: float):
-    """Go round's detour point (world): ``detour`` m to the side of the line to the checkpoint where it is blocked,
-    on the side whose straight way from the robot is freer (the left on a tie)."""
+    """Go round's detour point (world): ``detour`` m (or twice that) to the side of the line to the checkpoint where
+    it is blocked: the first of left, right, twice left, twice right whose straight way from the robot is the
+    freest."""
     alpha, d = target[0], target[1]
     along = jnp.minimum(free, d)
     ahead = along * jnp.stack([jnp.cos(alpha), jnp.sin(alpha)])
     side = p.detour * jnp.stack([-jnp.sin(alpha), jnp.cos(alpha)])
     best, best_share = ahead + side, jnp.float32(-1.0)
-    for candidate in (ahead + side, ahead - side):
+    for candidate in (ahead + side, ahead - side, ahead + 2 * side, ahead - 2 * side):
         angle, length = jnp.arctan2(candidate[1], candidate[0]), jnp.linalg.norm(candidate)
         share = jnp.minimum(free_ahead(rotate(points, angle), valid, radius, p.clearance) / length, 1.0)
         take = share > best_share
@@ -199,13 +207,14 @@ def detour_point(points, valid, target, free, pose, p: DeliberationParams, radiu
 
 def mover_in_way(obs: Observation, p: DeliberationParams, radius: float):
     """Whether a declared mover's body is within ``wait_within`` of the robot's, within 60° of the line to the
-    checkpoint."""
+    checkpoint, and not closing on the robot (it crosses the way, or leaves)."""
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
     pose = jnp.asarray(obs.pose, jnp.float32)
     alpha, dist = jax.vmap(lambda m: bearing(pose, m[:2]))(markers)
     gap = dist - markers[:, 4] - radius
     ahead = jnp.abs(wrap(alpha - obs.target[0])) < jnp.pi / 3
-    return jnp.any((gap < p.wait_within) & ahead)
+    closing = jnp.sum((pose[None, :2] - markers[:, :2]) * markers[:, 2:4], axis=1) > 0.0
+    return jnp.any((gap < p.wait_within) & ahead & ~closing)
 
 
 def bid(points, valid, obs: Observation, waited, p: DeliberationParams, radius: float) -> Bids:
@@ -214,14 +223,27 @@ def bid(points, valid, obs: Observation, waited, p: DeliberationParams, radius: 
     b, free = blocked_share(points, valid, obs.target, p, radius)
     goal = world_point(pose, obs.target)
     detour = detour_point(points, valid, obs.target, free, pose, p, radius)
-    behind = world_point(pose, (jnp.float32(jnp.pi), jnp.float32(p.backoff)))
     ahead = valid & (points[:, 0] > 0.0) & (jnp.sqrt(jnp.sum(jnp.square(points), axis=1)) < radius + p.close)
-    bids = jnp.stack([5.0 - 5.0 * b, 2.0 + 6.0 * b, jnp.where(jnp.any(ahead), 9.0, 0.0),
+    # back away: straight back, or out of the line of a mover closing on the robot (facing the way out, or away)
+    threat, out = way_out(obs, radius, p.wait_within)
+    facing = jnp.cos(jnp.arctan2(out[1], out[0]) - pose[2]) >= 0.0
+    behind = jnp.where(threat, pose[:2] + p.backoff * out, world_point(pose, (jnp.float32(jnp.pi), jnp.float32(p.backoff))))
+    backwards = jnp.where(threat, ~facing, True)
+    bids = jnp.stack([5.0 - 5.0 * b, 2.0 + 6.0 * b, jnp.where(jnp.any(ahead) | threat, 9.0, 0.0),
                       jnp.where(mover_in_way(obs, p, radius), 7.0 * jnp.clip(1.0 - waited / p.patience, 0.0, 1.0),
                                 0.0)])
-    actions = [_action(SERVO), _action(PATH, jnp.stack([detour, goal])), _action(PATH, jnp.stack([behind, behind]), True),
+    actions = [_action(SERVO), _action(PATH, jnp.stack([detour, goal])), _action(PATH, jnp.stack([behind, behind]), backwards),
                _action(STOP)]
     return Bids(bids.astype(jnp.float32), jax.tree.map(lambda *a: jnp.stack(a), *actions), b)
+
+
+def leg_blocked(state: DeliberationState, points, valid, obs: Observation, p: DeliberationParams, radius: float):
+    """Whether the running follow-path (forwards) is blocked on its way to its next waypoint (free distance
+    along the way shorter than the way): its behaviour, ruling still, then plans its action afresh."""
+    action = state.action
+    alpha, d = bearing(jnp.asarray(obs.pose, jnp.float32), action.path[jnp.minimum(state.waypoint, 1)])
+    free = free_ahead(rotate(points, alpha), valid, radius, p.clearance)
+    return (action.schema == PATH) & ~action.backwards & (free < d)
 
 
 def deliberate(state: DeliberationState, points, valid, obs: Observation, p: DeliberationParams, radius: float):
@@ -234,7 +256,7 @@ def deliberate(state: DeliberationState, points, valid, obs: Observation, p: Del
         winner = state.cycle % len(BEHAVIOURS)
     else:
         winner = jnp.argmax(b.bids + jnp.where(jnp.arange(len(BEHAVIOURS)) == state.ruling, p.stability, 0.0))
-    new = (winner != state.ruling) | ended
+    new = (winner != state.ruling) | ended | (leg_blocked(state, points, valid, obs, p, radius) & (p.level == "full"))
     chosen = jax.tree.map(lambda a: a[winner], b.actions)
     action = jax.tree.map(lambda n, o: jnp.where(new, n, o), chosen, state.action)
     return winner.astype(jnp.int32), action, new
@@ -264,12 +286,16 @@ def execute(state: DeliberationState, points, valid, obs: Observation, p: Delibe
     i = jnp.where((action.schema == PATH) & (d < p.waypoint), i + 1, i)
     path_v, path_w = drive_to(pose, action.path[jnp.minimum(i, 1)], action.backwards, i >= 1, p, robot)
     path_done = i >= 2
-    # collision detection: stop before what is in the way
-    way = jnp.where(action.backwards, -1.0, 1.0)[None] * points
-    danger = jnp.any(in_the_way(way, valid, robot.radius, p.margin, p.halt))
     schema = action.schema
     v = jnp.select([schema == SERVO, schema == PATH], [servo_v, path_v], 0.0)
     w = jnp.select([schema == SERVO, schema == PATH], [servo_w, path_w], 0.0)
+    # collision detection: stop before what is within ``halt`` of the body on the side it drives to, or in the
+    # corridor it sweeps within ``halt`` + one tick's travel
+    way = jnp.where(action.backwards, -1.0, 1.0)[None] * points
+    gap = jnp.sqrt(jnp.sum(jnp.square(way), axis=1)) - robot.radius
+    reach = p.halt + jnp.abs(v) * robot.avoid_period
+    danger = jnp.any(valid & (way[:, 0] > 0.0) & (gap < p.halt)) | jnp.any(
+        in_the_way(way, valid, robot.radius, p.margin, reach))
     moving = (schema == SERVO) | (schema == PATH)
     ends = ((schema == SERVO) & servo_done) | ((schema == PATH) & path_done) | (moving & danger)
     v, w = jnp.where(ends, 0.0, v), jnp.where(ends, 0.0, w)

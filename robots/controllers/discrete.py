@@ -99,3 +99,22 @@ def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, mer
     points = rotate(rel, pose[2])
     valid = jnp.concatenate([jnp.isfinite(memory.seen), jnp.ones(markers.shape[0], bool)])
     return memory, points, valid
+
+
+def way_out(obs, radius: float, within: float):
+    """The declared mover closing on the robot within ``within`` (body to body), if any, and the way out of its
+    line: (whether one does, unit world direction ``(2,)`` across the nearest such mover's line on the robot's
+    side — its left when the robot is on the line)."""
+    markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
+    if markers.shape[0] == 0:
+        return jnp.bool_(False), jnp.zeros(2, jnp.float32)
+    pose = jnp.asarray(obs.pose, jnp.float32)
+    rel = pose[None, :2] - markers[:, :2]  # from each mover to the robot
+    dist = jnp.sqrt(jnp.sum(jnp.square(rel), axis=1))
+    closing = jnp.sum(rel * markers[:, 2:4], axis=1) > 0.0
+    threat = (dist - markers[:, 4] - radius < within) & closing
+    nearest = jnp.argmin(jnp.where(threat, dist, jnp.inf))
+    u = markers[nearest, 2:4] / jnp.maximum(jnp.linalg.norm(markers[nearest, 2:4]), 1e-9)
+    out = rel[nearest] - jnp.dot(rel[nearest], u) * u
+    out = jnp.where(jnp.linalg.norm(out) < 1e-6, jnp.stack([-u[1], u[0]]), out)
+    return jnp.any(threat), out / jnp.maximum(jnp.linalg.norm(out), 1e-9)

@@ -62,7 +62,7 @@ import jax.numpy as jnp
 
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles
-from robots.controllers.discrete import in_the_way, sense, wheels
+from robots.controllers.discrete import in_the_way, sense, way_out, wheels, wrap
 from robots.params import KHEPERA, RobotParams
 
 #: Response names, by index (the table of the module docstring).
@@ -194,26 +194,15 @@ def avoid(points, seen, reach, p: SubsumptionParams, radius: float):
 
 def flee(obs: Observation, points, seen, p: SubsumptionParams, radius: float):
     """Layer 0's runaway from the declared movers: −1, or the response that takes the robot out of the line of a
-    mover closing on it within ``flee`` (body to body) — ``cruise`` when the way out lies within 45° of its
-    heading, ``back`` when within 45° of straight behind (and nothing is there), else the spin towards it."""
-    markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
-    if markers.shape[0] == 0:
-        return jnp.int32(-1)
-    pose = jnp.asarray(obs.pose, jnp.float32)
-    rel = pose[None, :2] - markers[:, :2]  # from each mover to the robot
-    dist = jnp.sqrt(jnp.sum(jnp.square(rel), axis=1))
-    closing = jnp.sum(rel * markers[:, 2:4], axis=1) > 0.0
-    threat = (dist - markers[:, 4] - radius < p.flee) & closing
-    nearest = jnp.argmin(jnp.where(threat, dist, jnp.inf))
-    u = markers[nearest, 2:4] / jnp.maximum(jnp.linalg.norm(markers[nearest, 2:4]), 1e-9)
-    out = rel[nearest] - jnp.dot(rel[nearest], u) * u  # across the mover's line, on the robot's side
-    out = jnp.where(jnp.linalg.norm(out) < 1e-6, jnp.stack([-u[1], u[0]]), out)
-    phi = jnp.arctan2(out[1], out[0]) - pose[2]
-    phi = jnp.arctan2(jnp.sin(phi), jnp.cos(phi))
+    mover closing on it within ``flee`` (body to body, :func:`~robots.controllers.discrete.way_out`) — ``cruise``
+    when the way out lies within 45° of its heading, ``back`` when within 45° of straight behind (and nothing is
+    there), else the spin towards it."""
+    threat, out = way_out(obs, radius, p.flee)
+    phi = wrap(jnp.arctan2(out[1], out[0]) - jnp.asarray(obs.pose, jnp.float32)[2])
     response = jnp.where(jnp.abs(phi) < jnp.pi / 4, CRUISE,
                          jnp.where((jnp.abs(phi) > 3 * jnp.pi / 4) & ~behind(points, seen, p, radius), BACK,
                                    jnp.where(phi > 0, SPIN_LEFT, SPIN_RIGHT)))
-    return jnp.where(jnp.any(threat), response, -1)
+    return jnp.where(threat, response, -1)
 
 
 def behind(points, seen, p: SubsumptionParams, radius: float):

@@ -122,3 +122,21 @@ def test_the_ruling_behaviour_keeps_control_by_its_stability_bias():
     assert int(kept.ruling) == rd.GOTO
     fresh, _ = tick_jit(rd.init(P), blocked, ANGLES, P, KHEPERA)  # nobody rules yet: the higher bid wins
     assert int(fresh.ruling) == rd.ROUND
+
+
+def test_a_ruling_go_round_plans_afresh_when_its_leg_becomes_blocked():
+    deliberate = jax.jit(rd.deliberate, static_argnames=("p", "radius"))
+    running = rd.init(P)._replace(ruling=jnp.int32(rd.ROUND), action=rd._action(rd.PATH, [[0.7, 0.5], [0.8, 0.6]]))
+    open_way = observation(long_ring(), target=(0.0, 0.3))
+    ruling, action, new = deliberate(running, *points_of(open_way), open_way, P, R)
+    assert int(ruling) == rd.GOTO and bool(new)  # nothing in the way: go to checkpoint outbids (5 vs 2 + 1)
+    # the point (0.1, 0) lies on the leg to (0.7, 0.5): go round wins again (6.7) and replans its detour
+    blocked = observation(long_ring(s0=0.075), target=(0.0, 0.3))
+    ruling, action, new = deliberate(running, *points_of(blocked), blocked, P, R)
+    assert int(ruling) == rd.ROUND and bool(new)
+    np.testing.assert_allclose(np.asarray(action.path), [[0.565, 0.58], [0.8, 0.5]], atol=1e-4)
+    # a leg that stays free keeps the running path
+    aside = rd.init(P)._replace(ruling=jnp.int32(rd.ROUND), action=rd._action(rd.PATH, [[0.5, 0.7], [0.8, 0.6]]))
+    ruling, action, new = deliberate(aside, *points_of(blocked), blocked, P, R)
+    assert int(ruling) == rd.ROUND and not bool(new)
+    np.testing.assert_allclose(np.asarray(action.path), [[0.5, 0.7], [0.8, 0.6]], atol=1e-6)
