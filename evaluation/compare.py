@@ -268,6 +268,17 @@ def by_family(records: list[dict], labels) -> list[dict]:
     return rows
 
 
+def by_architecture(records: list[dict], labels) -> list[dict]:
+    """One row per architecture over all its runs, every world pooled (``ekm compare --motion``, the JSON's
+    ``overall``): ``architecture, worlds`` and the summary of :func:`summarize`'s rows — success with its
+    interval and each motion measure's mean with its 95 % interval over the runs."""
+    rows = []
+    for label in labels:
+        rs = [r for r in records if r["label"] == label]
+        rows.append({"architecture": label, "worlds": len({r["given"] for r in rs}), **_row(rs)})
+    return rows
+
+
 def run_letter(r: dict) -> str:
     """R reached, T trapped, C arrived after a collision, N no route (at the start, or after a change of the
     map), L time limit."""

@@ -21,9 +21,9 @@ __all__ = ["Architecture", "Architectures", "architectures", "register_architect
 
 @dataclass(frozen=True)
 class Architectures(Result):
-    """Every architecture the runner knows: ``rows``, each ``{name, summary, origin, map, parameters}``
+    """Every architecture the runner knows: ``rows``, each ``{name, summary, origin, map, encoding, parameters}``
     (``origin``: "built in", "added" in this process or "entry point"; ``map``: the charts of the EKM it
-    drives, or None; ``parameters``: ``[{name, type, default, choices, help}]``). ``to_dict()`` is
+    drives, or None; ``encoding``: "continuous", "discrete" or None (Arkin §3.3); ``parameters``: ``[{name, type, default, choices, help}]``). ``to_dict()`` is
     ``ekm architectures --json``."""
 
     rows: tuple
@@ -45,12 +45,13 @@ def architectures() -> Architectures:
     for name, arch in table.items():
         origin = "built in" if name in spec.ARCHITECTURES else ("added" if name in spec.added_here() else "entry point")
         rows.append({"name": name, "summary": arch.summary, "origin": origin,
-                     "map": list(arch.charts) or None, "parameters": spec.describe_parameters(name)})
+                     "map": list(arch.charts) or None, "encoding": arch.encoding,
+                     "parameters": spec.describe_parameters(name)})
     return Architectures(rows=tuple(rows))
 
 
 def register_architecture(name, params: type | None = None, build=None, summary: str = "", *,
-                          chart: str | None = None, charts=()):
+                          chart: str | None = None, charts=(), encoding: str | None = None):
     """Add an architecture under ``name``, for :func:`ekm.run`, :func:`ekm.compare` (and their commands in
     this process) and :func:`architectures`.
 
@@ -73,6 +74,8 @@ def register_architecture(name, params: type | None = None, build=None, summary:
         The chart of the shipped map to drive when no map is given; None for an architecture without a map.
     charts : tuple of str, optional
         The charts of the maps it drives correctly (default: ``chart``).
+    encoding : {"continuous", "discrete"}, optional
+        How it encodes its response (Arkin §3.3), for ``ekm architectures`` and ``ekm compare --motion``.
 
     Returns
     -------
@@ -92,4 +95,4 @@ def register_architecture(name, params: type | None = None, build=None, summary:
     if isinstance(name, Architecture):
         return register(name)
     return register(Architecture(name=name, params=params, build=build, summary=summary, default_chart=chart,
-                                 charts=tuple(charts)))
+                                 charts=tuple(charts), encoding=encoding))

@@ -20,7 +20,9 @@ class Table(Result):
     Wilson interval ``success_ci95``, ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
     ``trapped`` and ``runs_by_trial`` (a letter per trial); ``seconds`` the wall time and ``workers`` where
     the runs went. ``families``: with generated worlds, one row per family and architecture (and
-    ``"all"``), each with the number of ``worlds`` and the same summary over their runs. ``to_dict()`` is
+    ``"all"``), each with the number of ``worlds`` and the same summary over their runs. ``overall``: one row
+    per architecture over all its runs, every world pooled (success and each motion measure with its 95 %
+    interval: ``ekm compare --motion``). ``to_dict()`` is
     ``ekm compare --json``; ``plot()`` draws the success rates with their intervals and the first trial's
     path in each world (by family, with one example world each, for a suite).
     """
@@ -35,6 +37,7 @@ class Table(Result):
     config: object = field(repr=False)
     records: tuple = field(repr=False, compare=False, default=())
     families: tuple = ()
+    overall: tuple = ()
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance
@@ -42,6 +45,8 @@ class Table(Result):
         out = {"results": [{k: v for k, v in r.items() if k != "runs_by_trial"} for r in self.rows]}
         if self.families:
             out["families"] = list(self.families)
+        if self.overall:
+            out["overall"] = list(self.overall)
         failures = [{"world": r["given"], "architecture": r["label"], "trial": r["trial"], "seed": r["seed"],
                      "reason": r["failed"]} for r in self.records if "failed" in r]
         if failures:
@@ -181,7 +186,7 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
 
     from ekm.api.worlds import world as load_world
     from ekm.api.driving import scenario_config
-    from evaluation.compare import by_family, compare as run_all, jobs, run_job, summarize
+    from evaluation.compare import by_architecture, by_family, compare as run_all, jobs, run_job, summarize
     from evaluation.results import key
     from evaluation.workers import workers_for
     from robots.controllers.spec import parse_architectures
@@ -238,7 +243,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     seconds = time.perf_counter() - t0
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
                  trials=trials, seed=seed, seconds=seconds, workers=pool.where, config=config,
-                 records=tuple(records), families=tuple(by_family(records, labels)))
+                 records=tuple(records), families=tuple(by_family(records, labels)),
+                 overall=tuple(by_architecture(records, labels)))
 
 
 def load_comparison(path) -> Table:
@@ -247,7 +253,7 @@ def load_comparison(path) -> Table:
 
     Raises :class:`ekm.InputError` if the file is not a results file or does not hold every run (then
     ``ekm compare … --resume PATH`` finishes it)."""
-    from evaluation.compare import by_family, summarize
+    from evaluation.compare import by_architecture, by_family, summarize
     from evaluation.results import key, read
     from evaluation.scenario import ScenarioConfig
 
@@ -263,7 +269,7 @@ def load_comparison(path) -> Table:
     return Table(rows=tuple(summarize(ordered, names, labels)), worlds=tuple(names), labels=tuple(labels),
                  trials=trials, seed=settings["seed"], seconds=0.0, workers=f"results file {path}",
                  config=ScenarioConfig(**settings["config"]), records=tuple(ordered),
-                 families=tuple(by_family(ordered, labels)))
+                 families=tuple(by_family(ordered, labels)), overall=tuple(by_architecture(ordered, labels)))
 
 
 def _version() -> str:

@@ -33,7 +33,8 @@ def run(args) -> None:
         return
     for i, r in enumerate(rows):
         drives = f"drives a {' or '.join(r['map'])}-chart EKM" if r["map"] else "drives no EKM"
-        print(("\n" if i else "") + f"{r['name']} ({r['origin']}; {drives})")
+        encodes = f"; {r['encoding']} responses" if r["encoding"] else ""
+        print(("\n" if i else "") + f"{r['name']} ({r['origin']}; {drives}{encodes})")
         print(textwrap.fill(r["summary"], 100, initial_indent="  ", subsequent_indent="  "))
         width = max((len(p["name"]) for p in r["parameters"]), default=0)
         for p in r["parameters"]:

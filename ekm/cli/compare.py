@@ -14,7 +14,9 @@ def add_parser(sub) -> None:
                 "with --scheduler)",
                 ["ekm compare --worlds three-rooms,concave-obstacle --architectures fusion,fields --trials 20",
                  "ekm compare --suite corridor:20,maze:20 --trials 1 --out suite.jsonl --plot suite.png",
-                 "ekm compare --from suite.jsonl --json"],
+                 "ekm compare --from suite.jsonl --json",
+                 "ekm compare --worlds three-rooms-static,open-arena --architectures fields,schema,damn,subsumption "
+                 "--motion"],
                 more="Architectures and their parameters: ekm architectures. Results files, resume, workers that "
                      "die: docs/guide/comparing.md.")
     p.add_argument("--worlds", default="", metavar="W1,W2,...",
@@ -45,6 +47,9 @@ def add_parser(sub) -> None:
                         "only the missing runs are made")
     p.add_argument("--from", dest="from_results", metavar="RESULTS.jsonl",
                    help="no runs: the table (and --plot, --json) of a finished results file")
+    p.add_argument("--motion", action="store_true",
+                   help="also print each architecture's motion over all its runs (smoothness, hesitation, efficiency, "
+                        "precision; mean ± 95 %% interval) with its response encoding")
     p.add_argument("--plot", metavar="PNG", help="success rates with their intervals, and one path per cell")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
@@ -87,6 +92,9 @@ def run(args) -> None:
             print_table(named)
     else:
         print_table(table.rows)
+    if args.motion:
+        print()
+        print_motion(table.overall)
     if plot:
         print(f"plot written to {plot}")
 
@@ -119,3 +127,31 @@ def print_table(rows) -> None:
     head = ("architecture", "world", "success", "95 % interval", "time s", "path m", "trapped", "collisions", "runs")
     _print([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1), _mean(r["mean_path_m"], 2),
                       str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]) for r in rows])
+
+
+#: The motion measures ``--motion`` prints: (key, column head, scale to the unit shown, digits).
+MOTION_COLUMNS = (("command_change_mps", "change mm/s", 1000.0, 1), ("angular_accel_rms", "ang. acc. rad/s2", 1.0, 2),
+                  ("stopped_s", "stopped s", 1.0, 1), ("turn_reversals_per_m", "reversals /m", 1.0, 1),
+                  ("path_ratio", "path/route", 1.0, 2), ("stop_distance_m", "stop mm", 1000.0, 2))
+
+
+def print_motion(rows) -> None:
+    """Each architecture over all its runs (:func:`evaluation.compare.by_architecture`): its response encoding,
+    success, and each motion measure (:mod:`evaluation.motion`) as mean ± the half-width of its 95 % interval."""
+    from robots.controllers.spec import registry
+
+    known = registry()
+
+    def encoding(label: str) -> str:
+        arch = known.get(label.split(":")[0])
+        return (arch.encoding if arch else None) or "-"
+
+    def cell(m, scale, digits):
+        if m["mean"] is None:
+            return ""
+        half = (m["ci95"][1] - m["ci95"][0]) / 2 * scale
+        return f"{m['mean'] * scale:.{digits}f} ±{half:.{digits}f}"
+
+    head = ("architecture", "encoding", "runs", "success") + tuple(h for _, h, _, _ in MOTION_COLUMNS)
+    _print([head] + [(r["architecture"], encoding(r["architecture"]), str(r["trials"]), _success(r)[0],
+                      *(cell(r["motion"][k], scale, digits) for k, _, scale, digits in MOTION_COLUMNS)) for r in rows])

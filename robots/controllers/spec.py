@@ -29,6 +29,9 @@ class Architecture:
     no EKM (its ``build`` then gets ``ekm=None, cfg=None``). ``charts``: the charts of the maps it drives
     correctly (default: only ``default_chart``); a map of another chart is refused.
 
+    ``encoding``: how it encodes its response (Arkin §3.3) — ``continuous`` (a command from a continuous
+    function of what it senses), ``discrete`` (one of a prespecified set of responses) — or None (not said).
+
     ``params`` is a frozen dataclass whose every field has a default; a field's ``metadata`` may hold
     ``help`` (one line, with the unit) and ``choices`` (the allowed values of a text parameter).
     ``build(params, ekm, cfg, spec=…, robot=…)`` returns a :class:`~robots.controllers.base.Controller`.
@@ -40,32 +43,39 @@ class Architecture:
     summary: str
     default_chart: str | None = None
     charts: tuple = ()
+    encoding: str | None = None
 
     def __post_init__(self):
         if not self.charts and self.default_chart is not None:
             object.__setattr__(self, "charts", (self.default_chart,))
 
 
+#: How an architecture may encode its response (:attr:`Architecture.encoding`).
+ENCODINGS = ("continuous", "discrete", None)
+
 #: The architectures of the package, in the order ``ekm architectures`` lists them.
 ARCHITECTURES: dict[str, Architecture] = {
     "fusion": Architecture("fusion", fusion.FusionParams, fusion.build,
-                           "command fusion: indirect EKM + Braitenberg type-3C avoidance (ch. 4.5)", fusion.DEFAULT_CHART),
+                           "command fusion: indirect EKM + Braitenberg type-3C avoidance (ch. 4.5)", fusion.DEFAULT_CHART,
+                           encoding="continuous"),
     "fields": Architecture("fields", neural_fields.FieldParams, neural_fields.build,
                            "dynamic neural fields: cooperative EKMs (ch. 5)", neural_fields.DEFAULT_CHART,
-                           charts=("signed", "polar")),
+                           charts=("signed", "polar"), encoding="continuous"),
     "samba": Architecture("samba", samba.SambaParams, samba.build,
-                          "Samba action maps: MAV(Goto, filtered Avoid), heaviest action (Riekki 1999)", None),
+                          "Samba action maps: MAV(Goto, filtered Avoid), heaviest action (Riekki 1999)", None,
+                          encoding="discrete"),
     "schema": Architecture("schema", motor_schemas.SchemaParams, motor_schemas.build,
-                           "motor schemas: move-to-goal + avoid-obstacle + noise vectors, summed (Arkin ch. 4.4)", None),
+                           "motor schemas: move-to-goal + avoid-obstacle + noise vectors, summed (Arkin ch. 4.4)", None,
+                           encoding="continuous"),
     "subsumption": Architecture("subsumption", subsumption.SubsumptionParams, subsumption.build,
                                 "subsumption: layered behaviours, suppression and inhibition, 9 responses "
-                                "(Brooks; Arkin 4.3)", None),
+                                "(Brooks; Arkin 4.3)", None, encoding="discrete"),
     "damn": Architecture("damn", damn.DamnParams, damn.build,
                          "DAMN: behaviours vote over 9 turns and 6 speeds, two winner-take-all arbiters "
-                         "(Rosenblatt; Arkin 4.5.5)", None),
+                         "(Rosenblatt; Arkin 4.5.5)", None, encoding="discrete"),
     "deliberation": Architecture("deliberation", deliberation.DeliberationParams, deliberation.build,
                                  "reactive deliberation: behaviours bid for one action schema, the deliberator "
-                                 "interrupts (Sahota ch. 3)", None),
+                                 "interrupts (Sahota ch. 3)", None, encoding="discrete"),
 }
 
 #: The entry-point group through which an installed package adds architectures: each entry point names an
@@ -104,6 +114,9 @@ def register(arch: Architecture) -> Architecture:
         raise InputError(f"architecture {arch.name}: build must be callable")
     from ekm.config import CHARTS
 
+    if arch.encoding not in ENCODINGS:
+        raise InputError(f"architecture {arch.name}: encoding must be one of {', '.join(map(str, ENCODINGS))}, "
+                         f"got {arch.encoding!r}")
     for chart in (arch.default_chart, *arch.charts):
         if chart is not None and chart not in CHARTS:
             raise InputError(f"architecture {arch.name}: chart must be one of {', '.join(CHARTS)}, got {chart!r}")

@@ -3,7 +3,7 @@
 
 import pytest
 
-from evaluation.compare import Job, compare, jobs, run_job, summarize, wilson
+from evaluation.compare import Job, by_architecture, compare, jobs, run_job, summarize, wilson
 from evaluation.scenario import ScenarioConfig
 from robots.controllers.spec import parse_architectures
 
@@ -39,6 +39,21 @@ def test_summary_rows_carry_design_keys_means_of_successes_and_intervals():
     assert row["success_rate"] == 0.6 and row["mean_time_s"] == 11.0 and row["trapped"] == 1
     assert row["collisions"] == 1 and row["success_ci95"] == pytest.approx(wilson(3, 5), abs=1e-4)
     assert row["runs_by_trial"] == "RRRTL" and row["contact_s"] == 0.25 and row["failed"] == 0
+
+
+def test_an_architecture_s_overall_row_pools_its_runs_in_every_world():
+    def run(label, world, trial, reached, change):
+        return {"label": label, "given": world, "world": world, "trial": trial, "reached": reached, "trapped": False,
+                "arrived": reached, "ended": "x", "time_s": 10.0, "path_m": 1.0, "collisions": 0, "contact_s": 0.0,
+                "command_change_mps": change}
+    records = [run("a", "w1", 0, True, 0.010), run("a", "w1", 1, True, 0.020), run("a", "w2", 0, False, 0.030),
+               run("a", "w2", 1, True, 0.040), run("b", "w1", 0, True, 0.5)]
+    a, b = by_architecture(records, ["a", "b"])
+    assert (a["architecture"], a["worlds"], a["trials"], a["success_rate"]) == ("a", 2, 4, 0.75)
+    # mean 0.025 of the four; sample sd 0.01291, half-width 1.96 · 0.01291 / 2 = 0.01265
+    assert a["motion"]["command_change_mps"]["mean"] == pytest.approx(0.025)
+    assert a["motion"]["command_change_mps"]["ci95"] == pytest.approx([0.01235, 0.03765], abs=1e-5)
+    assert (b["worlds"], b["trials"], b["motion"]["command_change_mps"]["mean"]) == (1, 1, 0.5)
 
 
 def test_a_job_is_a_pure_function_of_its_fields():

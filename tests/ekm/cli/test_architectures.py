@@ -18,7 +18,9 @@ from robots.controllers import spec
 
 ROOT = Path(__file__).resolve().parents[3]
 EXAMPLE = ROOT / "examples" / "wander"
-BUILT_IN = ["fusion", "fields", "samba", "schema"]
+BUILT_IN = ["fusion", "fields", "samba", "schema", "subsumption", "damn", "deliberation"]
+ENCODING = {"fusion": "continuous", "fields": "continuous", "samba": "discrete", "schema": "continuous",
+            "subsumption": "discrete", "damn": "discrete", "deliberation": "discrete"}
 
 
 @pytest.fixture
@@ -50,7 +52,8 @@ def installed(tmp_path):
 def test_every_built_in_architecture_is_listed_with_its_parameters(cli):
     code, out, _ = cli("architectures", "--json")
     rows = json.loads(out)["architectures"]
-    assert code == 0 and [r["name"] for r in rows][:4] == BUILT_IN
+    assert code == 0 and [r["name"] for r in rows][:7] == BUILT_IN
+    assert {r["name"]: r["encoding"] for r in rows[:7]} == ENCODING
     fusion = rows[0]
     assert fusion["origin"] == "built in" and fusion["map"] == ["polar"]
     beta = next(p for p in fusion["parameters"] if p["name"] == "beta")
@@ -59,6 +62,7 @@ def test_every_built_in_architecture_is_listed_with_its_parameters(cli):
     assert sensors["choices"] == ["short", "long"]
     code, out, _ = cli("architectures")
     assert all(f"{name} (built in;" in out for name in BUILT_IN) and "beta    = 0.85 (float)" in out
+    assert "deliberation (built in; drives no EKM; discrete responses)" in out
 
 
 @dataclass(frozen=True)
@@ -100,6 +104,13 @@ def test_an_architecture_registered_in_python_is_listed_spelled_and_run(registry
 def test_a_bad_registration_is_refused_in_one_line(registry, args, message):
     with pytest.raises(InputError, match=message):
         ekm.register_architecture(*args)
+
+
+def test_an_architecture_says_its_response_encoding_or_nothing(registry):
+    with pytest.raises(InputError, match="encoding must be one of continuous, discrete, None, got 'smooth'"):
+        ekm.register_architecture("still", StillParams, build_still, encoding="smooth")
+    ekm.register_architecture("still", StillParams, build_still, encoding="discrete")
+    assert next(r for r in ekm.architectures().rows if r["name"] == "still")["encoding"] == "discrete"
 
 
 def test_an_installed_package_adds_an_architecture_through_its_entry_point(registry, installed, monkeypatch):

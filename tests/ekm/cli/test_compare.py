@@ -62,6 +62,22 @@ def test_a_comparison_resumed_from_its_results_file_gives_the_same_json(cli, tmp
     assert code == 0 and strip(json.loads(out)) == strip(whole) and (tmp_path / "again.png").stat().st_size > 0
 
 
+def test_motion_pools_each_architecture_s_runs_over_the_worlds(cli):
+    code, out, _ = cli(*ARGS, "--workers", "1")
+    doc = json.loads(out)
+    assert code == 0 and [r["architecture"] for r in doc["overall"]] == ["fusion", "fields:form=thesis"]
+    for row in doc["overall"]:
+        mine = [r for r in doc["results"] if r["architecture"] == row["architecture"]]
+        assert row["trials"] == 4 and row["worlds"] == 2
+        assert row["success_rate"] == sum(r["success_rate"] * r["trials"] for r in mine) / 4
+    code, out, _ = cli(*[a for a in ARGS if a != "--json"], "--workers", "1", "--motion")
+    lines = out.splitlines()
+    head = next(i for i, line in enumerate(lines) if line.split()[:2] == ["architecture", "encoding"])
+    assert code == 0 and "change mm/s" in lines[head] and "stop mm" in lines[head]
+    assert lines[head + 1].split()[:3] == ["fusion", "continuous", "4"]
+    assert lines[head + 2].split()[:3] == ["fields:form=thesis", "continuous", "4"]
+
+
 def test_results_files_are_refused_in_one_line(cli, tmp_path):
     results = tmp_path / "r.jsonl"
     code, _, _ = cli("compare", "--worlds", "open-arena", "--architectures", "fusion", "--trials", "2",
