@@ -13,7 +13,8 @@ tick do not pass for jerkiness:
   path;
 - ``path_ratio``: path length over the planner's first route (start, checkpoints, goal; the straight legs,
   :func:`planner.checkpoints.path_length`);
-- ``stop_distance_m``: distance from the goal where the robot stopped there, None if it never did.
+- ``stop_distance_m``: distance from the goal where the robot stopped there, None if it never did (and for a
+  moving goal, which is caught within the capture radius, not stopped at).
 """
 
 from __future__ import annotations
@@ -74,10 +75,12 @@ def measures(commands, times, poses, period: float, goal_at, route_m: float, arr
 
 def mean_ci(values) -> tuple[float | None, list | None]:
     """Mean of the values that are not None, and its 95 % interval (normal approximation, ±1.96 standard
-    errors; the one value itself when there is one); (None, None) when there are none."""
+    errors, the lower bound no less than 0 when no value is negative — a mean time stopped, mostly zeros,
+    cannot be negative; the one value itself when there is one); (None, None) when there are none."""
     v = np.asarray([x for x in values if x is not None], float)
     if len(v) == 0:
         return None, None
     m = float(v.mean())
     half = 1.959964 * float(v.std(ddof=1)) / math.sqrt(len(v)) if len(v) > 1 else 0.0
-    return m, [m - half, m + half]
+    lo = m - half if v.min() < 0 else max(m - half, 0.0)
+    return m, [lo, m + half]

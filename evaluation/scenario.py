@@ -161,8 +161,9 @@ class RunRecord:
         from planner.checkpoints import path_length
 
         route = path_length(self.poses[0, :2], self.plans[0].checkpoints) if self.plans and len(self.poses) else 0.0
+        # a moving goal is caught, not stopped at: its precision is the capture radius, not the robot's
         return motion.measures([c[1:] for c in self.commands], self.times, self.poses, self.period,
-                               self.world.goal_at, route, self.arrived)
+                               self.world.goal_at, route, self.arrived and not self.world.moving_goal)
 
 
 def mover_radius(shape) -> float:

@@ -26,13 +26,16 @@ from typing import Callable
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGES = ("README.md", "docs/reproduce/ch61.md", "docs/reproduce/ch62.md", "docs/reproduce/comparison.md",
-         "docs/reproduce/generalisation.md")
+         "docs/reproduce/generalisation.md", "docs/reproduce/discrete.md")
 NAMED = ("three-rooms-static", "three-rooms-moving", "three-rooms-changed", "extended-obstacle", "concave-obstacle",
          "three-rooms", "open-arena", "moving-target")
 FIGURES = {"three-rooms-static": "6.3, 6.6", "three-rooms-moving": "6.4", "three-rooms-changed": "6.5",
            "extended-obstacle": "6.7", "concave-obstacle": "6.8"}
 SUITE = "corridor:20,traps:20,clutter:20,maze:20,movers:20,blocked:20"
 THESIS_ARCHITECTURES = "fusion,fusion:sensors=long,period=0.128,fields,fields:form=thesis"
+CLAIM_ARCHITECTURES = "fusion,fields,schema,samba,subsumption,damn,deliberation"
+CLAIM_SUITE = "corridor:10,traps:10,clutter:10,maze:10,movers:10,blocked:10"
+LEVELS = "deliberation,deliberation:level=half,deliberation:level=none"
 THESIS_HEADS = {"fusion": "fusion, short-range (ch. 6.2.1)",
                 "fusion:sensors=long,period=0.128": "fusion, long-range, 0.128 s (ch. 6.2.2)",
                 "fields": "fields (extended)", "fields:form=thesis": "fields, thesis form"}
@@ -59,7 +62,8 @@ def cached(fn):
         else:
             result = fn()
             data = result.to_dict() if fn.__name__ == "ch61" else \
-                {"rows": list(result.rows), "labels": list(result.labels), "families": list(result.families)}
+                {"rows": list(result.rows), "labels": list(result.labels), "families": list(result.families),
+                 "overall": list(result.overall)}
             if file:
                 file.write_text(json.dumps(data))
         return data if fn.__name__ == "ch61" else SimpleNamespace(**data)
@@ -99,6 +103,31 @@ def suite_thesis():
 
     return ekm.compare(suite=SUITE, architectures="fusion,fields,fields:form=thesis", checkpoints="thesis",
                        recover=False, trials=1)
+
+
+@cached
+def claim_named():
+    """``ekm compare --worlds NAMED --architectures CLAIM_ARCHITECTURES --trials 10 --motion``."""
+    import ekm
+
+    return ekm.compare(list(NAMED), CLAIM_ARCHITECTURES, trials=10)
+
+
+@cached
+def claim_suite():
+    """``ekm compare --suite CLAIM_SUITE --architectures CLAIM_ARCHITECTURES --trials 1 --motion``."""
+    import ekm
+
+    return ekm.compare(suite=CLAIM_SUITE, architectures=CLAIM_ARCHITECTURES, trials=1)
+
+
+@cached
+def claim_levels():
+    """``ekm compare --suite CLAIM_SUITE --architectures deliberation,deliberation:level=half,deliberation:level=none
+    --trials 1 --motion``."""
+    import ekm
+
+    return ekm.compare(suite=CLAIM_SUITE, architectures=LEVELS, trials=1)
 
 
 @cached
@@ -169,11 +198,6 @@ def _family_name(f: str) -> str:
     return "all 120" if f == "all" else f"`{f}`"
 
 
-def compare_short():
-    t = named_defaults()
-    return _grid(_by_world(t), NAMED, t.labels, "world", lambda w: f"`{w}`", time=True)
-
-
 def compare_long():
     t = named_defaults()
     return _grid(_by_world(t), NAMED, t.labels, "world", lambda w: f"`{w}`", ci=True, time=True, collisions=True)
@@ -196,6 +220,94 @@ def generalisation_thesis():
                  collisions=True)
 
 
+#: The motion columns of the claim's tables: (key, head, scale to the unit shown, digits).
+MOTION = (("command_change_mps", "command change (mm/s a tick)", 1000.0, 1),
+          ("angular_accel_rms", "angular acc. (rad/s², RMS)", 1.0, 2),
+          ("stopped_s", "stopped away from the goal (s)", 1.0, 1),
+          ("turn_reversals_per_m", "turn reversals (/m)", 1.0, 1),
+          ("path_ratio", "path / route", 1.0, 2),
+          ("stop_distance_m", "stop distance (mm)", 1000.0, 1))
+
+
+def _motion_cell(m, scale, digits) -> str:
+    if m["mean"] is None:
+        return ""
+    lo, hi = (x * scale for x in m["ci95"])
+    return f"{m['mean'] * scale:.{digits}f} ({lo:.{digits}f}–{hi:.{digits}f})"
+
+
+def _motion_table(overall, keys=None) -> list[str]:
+    """One line per architecture (its encoding, success over all its runs, each motion measure — those of
+    ``keys``, default all — as mean (95 % interval)); the lowest mean of each measure in bold."""
+    from robots.controllers.spec import registry
+
+    columns = [c for c in MOTION if keys is None or c[0] in keys]
+    best = {k: min(r["motion"][k]["mean"] for r in overall if r["motion"][k]["mean"] is not None)
+            for k, *_ in columns}
+    lines = ["| architecture | encoding | success | " + " | ".join(h for _, h, *_ in columns) + " |",
+             "|---|---|---|" + "---|" * len(columns)]
+    for r in overall:
+        cells = []
+        for k, _, scale, digits in columns:
+            cell = _motion_cell(r["motion"][k], scale, digits)
+            top = r["motion"][k]["mean"] is not None and round(r["motion"][k]["mean"] * scale, digits) == \
+                round(best[k] * scale, digits)
+            cells.append(f"**{cell}**" if top else cell)
+        lines.append(f"| `{r['architecture']}` | {registry()[r['architecture']].encoding} | {_count(r)} | "
+                     + " | ".join(cells) + " |")
+    return lines
+
+
+def claim():
+    return _motion_table(claim_named().overall)
+
+
+def claim_readme():
+    return _motion_table(claim_named().overall, ("angular_accel_rms", "stopped_s", "turn_reversals_per_m",
+                                                 "stop_distance_m"))
+
+
+def claim_suite_table():
+    return _motion_table(claim_suite().overall)
+
+
+def claim_smoothness():
+    """Angular acceleration (rad/s², RMS; mean over the world's runs) by world and architecture."""
+    t = claim_named()
+    rows = _by_world(t)
+    lines = ["| world | " + " | ".join(f"`{a}`" for a in t.labels) + " |", "|---|" + "---|" * len(t.labels)]
+    for w in NAMED:
+        values = [rows(w, a)["motion"]["angular_accel_rms"]["mean"] for a in t.labels]
+        low = min(values)
+        lines.append(f"| `{w}` | " + " | ".join(f"**{v:.2f}**" if v == low else f"{v:.2f}" for v in values) + " |")
+    return lines
+
+
+def claim_worlds():
+    t = claim_named()
+    return _grid(_by_world(t), NAMED, t.labels, "world", lambda w: f"`{w}`", time=True, collisions=True)
+
+
+def levels():
+    """Sahota's three levels by family: success, then angular acceleration and time stopped over all 60."""
+    t = claim_levels()
+    heads = {"deliberation": "full (reactive deliberation)", "deliberation:level=half": "half-wit",
+             "deliberation:level=none": "no-wit"}
+    lines = _grid(_by_family(t), _families(t), t.labels, "family", lambda f: "all 60" if f == "all" else f"`{f}`",
+                  heads, time=True, collisions=True)
+    overall = {r["architecture"]: r["motion"] for r in t.overall}
+    for key, name, digits in (("angular_accel_rms", "angular acc. (rad/s², RMS)", 2),
+                              ("stopped_s", "stopped away from the goal (s)", 1)):
+        lines.append(f"| {name} | " + " | ".join(_motion_cell(overall[a][key], 1.0, digits) for a in t.labels) + " |")
+    return lines
+
+
+def claim_families():
+    t = claim_suite()
+    return _grid(_by_family(t), _families(t), t.labels, "family", lambda f: "all 60" if f == "all" else f"`{f}`",
+                 ci=True)
+
+
 def ch61_table():
     ev = ch61()
     lines = ["| after 100,000 steps | E (mm) | P(5) | P(10) | P(25) | T(5) | T(10) | T(25) steps/m | D(5) | D(10) | "
@@ -216,9 +328,12 @@ class Table:
     render: Callable[[], list[str]]
 
 
-TABLES = {t.name: t for t in (Table("ch61", ch61_table), Table("ch62", ch62), Table("compare", compare_short),
-                              Table("compare-intervals", compare_long), Table("generalisation", generalisation),
-                              Table("generalisation-thesis", generalisation_thesis))}
+TABLES = {t.name: t for t in (
+    Table("ch61", ch61_table), Table("ch62", ch62), Table("compare-intervals", compare_long),
+    Table("generalisation", generalisation), Table("generalisation-thesis", generalisation_thesis),
+    Table("claim", claim), Table("claim-readme", claim_readme), Table("claim-worlds", claim_worlds),
+    Table("claim-smoothness", claim_smoothness),
+    Table("claim-suite", claim_suite_table), Table("claim-families", claim_families), Table("levels", levels))}
 
 BLOCK = re.compile(r"(<!-- table: (?P<name>[a-z0-9-]+) -->\n)(?P<body>.*?)(<!-- end table -->)", re.S)
 

@@ -18,7 +18,8 @@ index    response                     (v m/s, ω rad/s) with the defaults
 
 **The layers**, in Brooks's order of competence (Fig. 4.5: avoid-objects, explore, back-out-of-tight-
 situations; Mataric's foraging robot, §4.3.4: wandering, avoiding, homing), each an augmented finite-state
-machine whose only memory is its own timers and counters (state :class:`SubsumptionState`):
+machine whose memory is its own timers and counters (state :class:`SubsumptionState`); all read the same
+obstacle points, this tick's IR hits and those remembered (:func:`~robots.controllers.discrete.sense`):
 
 0. **avoid**: *runaway* — a sensed point in the corridor the body sweeps within ``near`` ahead
    (:func:`~robots.controllers.discrete.in_the_way`, half-width body radius + ``margin``) turns the robot
@@ -35,10 +36,11 @@ machine whose only memory is its own timers and counters (state :class:`Subsumpt
    ``straight_within``, else ``cruise``, ``slow`` within ``slow_within``, ``creep`` within ``creep_within`` and
    ``stop`` within ``stop_within`` of the goal. It goes silent — and wander drives — for ``wander_s`` when it
    has come no ``progress`` closer to its checkpoint for ``patience`` s (Mataric's robots wander when no
-   attractor is sensed; here an unreachable one is as good as none);
+   attractor is sensed; here an unreachable one is as good as none). With the default 30 s the runner's
+   trap monitor (20 s) replans first: wander's new ground hid traps from it when goto gave up after 8 s;
 3. **back out** **suppresses** everything below after ``attempts`` avoid episodes without progress towards
-   the checkpoint (Mataric: "after three attempts, back up and turn"): ``back`` for ``back_s``, then ``spin``
-   away from the side that senses more for ``turn_s``.
+   the checkpoint (Mataric: "after three attempts, back up and turn"): ``back`` for ``back_s`` (``stop`` while
+   something is right behind), then ``spin`` away from the side that senses more for ``turn_s``.
 
 Avoid sits above go-to-checkpoint in the suppression chain (as avoiding sits above homing in Mataric's
 robot): ``out = backout ▷ avoid ▷ goto ▷ wander``, with ``a ▷ b`` = a's response when a speaks, else b's

@@ -76,3 +76,7 @@ def test_mean_ci_is_the_mean_with_1_96_standard_errors():
     m, (lo, hi) = mean_ci([1.0, 2.0, 3.0, None])
     assert m == 2.0 and hi - m == pytest.approx(1.959964 * 1.0 / math.sqrt(3))
     assert mean_ci([None]) == (None, None) and mean_ci([4.0]) == (4.0, [4.0, 4.0])
+    # nine zeros and a 3: mean 0.3, sd 0.9487, half-width 0.588 — no value is negative: the lower bound is 0
+    m, (lo, hi) = mean_ci([0.0] * 9 + [3.0])
+    assert m == pytest.approx(0.3) and lo == 0.0 and hi == pytest.approx(0.3 + 1.959964 * 0.948683 / math.sqrt(10))
+    assert mean_ci([-3.0] + [0.0] * 9)[1][0] == pytest.approx(-0.3 - 1.959964 * 0.948683 / math.sqrt(10))

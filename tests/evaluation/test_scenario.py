@@ -309,3 +309,14 @@ def test_ch_6_2_2_neural_fields_take_a_shorter_path_than_command_fusion_where_bo
 def test_ch_6_2_2_command_fusion_is_trapped_by_extended_and_concave_obstacles(world, architecture):
     records = runs(world, architecture, range(10))
     assert count(records, "trapped") >= 8 and count(records, "reached") <= 1
+
+
+def test_a_caught_moving_goal_has_no_stop_distance_and_a_still_one_has_its_own():
+    """Precision is where the robot stopped at a still goal (within the 5 mm); a moving goal is caught within the
+    body's radius, which says nothing of the robot's precision."""
+    spec = parse_architecture("schema")
+    caught = run_architecture(load_world("moving-target"), spec, seed=0).outcome()
+    assert caught["arrived"] and caught["stop_distance_m"] is None
+    still = run_architecture(load_world("open-arena"), spec, seed=0).outcome()
+    assert still["arrived"] and still["stop_distance_m"] == pytest.approx(still["final_distance_m"], abs=1e-5)
+    assert still["stop_distance_m"] < 0.005
