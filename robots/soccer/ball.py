@@ -1,12 +1,14 @@
 """The ball and the pitch it rolls on: ball parameters (pure data) and :class:`Pitch`, the pymunk shell.
 
 The field is seen from above: no gravity, and the ball's roll is a deceleration of constant size
-``rolling_friction`` against its velocity, applied before every physics step:
+``rolling_friction`` f against its velocity,
 
     |v| ← max(|v| − f·dt, 0)      (direction kept: friction stops the ball, never turns it round)
 
-so a ball kicked at v0 stops after v0/f seconds, having rolled v0²/(2f) metres — v0²/(2f) − v0·dt/2 with the
-step-by-step decrement (pymunk moves by the decremented velocity), 0.8 % short at the defaults and 0.3 m/s.
+taken half before and half after each physics step, so the ball moves by its mean speed over the step: a ball
+kicked at v0 stops after v0/f seconds (rounded up to a whole step), having rolled v0²/(2f) metres to within
+f·dt²/8 (5 µm at the defaults).
+
 A wall returns the ball's normal velocity times ``restitution`` and keeps its tangential velocity (no
 contact friction).
 
@@ -157,13 +159,19 @@ class Pitch:
         self.ball_body.velocity = (float(v[0]), float(v[1]))
 
     def step(self, dt: float = KHEPERA.dt) -> None:
-        """Advance ``dt`` seconds (default the robot's physics sub-step, 16 ms): take f·dt off the ball's speed
-        along −v, clamped at 0 (module docstring), then one ``space.step(dt)`` — semi-implicit Euler, so the
-        ball moves by the decremented velocity and bounces off whatever it meets."""
+        """Advance ``dt`` seconds (default the robot's physics sub-step, 16 ms): take f·dt/2 off the ball's
+        speed along −v (clamped at 0), one ``space.step(dt)`` — which moves the ball by that velocity and
+        bounces it off whatever it meets — then the other f·dt/2. Over the step the speed falls by f·dt, and
+        the ball moves by its mean speed over the step, so it rolls v0²/(2f) to within f·dt²/8."""
         dt = _number("Pitch.step dt", dt, 0.0, open_low=True)
+        self._roll(0.5 * dt)
+        self.space.step(dt)
+        self._roll(0.5 * dt)
+
+    def _roll(self, dt: float) -> None:
+        """|v| ← max(|v| − f·dt, 0), direction kept."""
         v = self.ball_body.velocity
         speed = math.hypot(v.x, v.y)
         if speed > 0.0:
             k = max(speed - self.params.rolling_friction * dt, 0.0) / speed
             self.ball_body.velocity = (v.x * k, v.y * k)
-        self.space.step(dt)

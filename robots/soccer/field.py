@@ -34,8 +34,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from ekm.errors import InputError
-from robots.geometry import Point, Segment
+from robots.geometry import Point, Segment, segment_distance
 
 SIDES = (0, 1)
 """Side 0 defends the goal at x = 0 (the "left" team), side 1 the goal at x = length."""
@@ -110,17 +112,22 @@ class Field:
         x, mid = float(point[0]), 0.5 * self.length
         return 0 if x < mid else 1 if x > mid else None
 
+    def clearance(self, point) -> float:
+        """Distance (m) from ``point`` = (x, y) to the nearest wall's surface: min over :meth:`walls` of the
+        distance to the centre line minus ``wall_thickness / 2`` (negative inside a wall)."""
+        p = np.asarray(point, dtype=float)
+        h = 0.5 * self.wall_thickness
+        return float(min(segment_distance(p, s.start, s.end) for s in self.walls())) - h
+
     def contains(self, point, margin: float = 0.0) -> bool:
-        """Whether a disc of radius ``margin`` centred on ``point`` = (x, y) fits on the pitch without touching a
-        wall: inside the field inset by ``margin``, or inside the channel through both mouths
-        (``[−depth + margin, length + depth − margin] × [y0 + margin, y1 − margin]``). Conservative at the
-        rounded posts."""
+        """Whether a disc of radius ``margin`` centred on ``point`` = (x, y) lies on the pitch without
+        overlapping a wall: the centre is in the field ``[0, length] × [0, width]`` or in the channel through
+        both mouths ``[−depth, length + depth] × [y0, y1]``, and :meth:`clearance` >= ``margin``."""
         x, y = float(point[0]), float(point[1])
-        m = margin
         y0, y1 = self.mouth
-        in_field = m <= x <= self.length - m and m <= y <= self.width - m
-        in_channel = -self.goal_depth + m <= x <= self.length + self.goal_depth - m and y0 + m <= y <= y1 - m
-        return in_field or in_channel
+        in_field = 0.0 <= x <= self.length and 0.0 <= y <= self.width
+        in_channel = -self.goal_depth <= x <= self.length + self.goal_depth and y0 <= y <= y1
+        return (in_field or in_channel) and self.clearance((x, y)) >= margin
 
     # ------------------------------------------------------------------------------------------ walls
     def walls(self) -> tuple[Segment, ...]:

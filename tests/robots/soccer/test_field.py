@@ -74,13 +74,25 @@ def test_wall_centre_lines_put_their_inner_faces_on_the_lines_of_the_game():
     assert has((1.265, 0.275), (1.265, 0.525))
 
 
+def test_clearance_is_the_distance_to_the_nearest_wall_surface():
+    assert F.clearance(F.centre_spot) == pytest.approx(0.4)  # side walls at y = 0 and 0.8; ends 0.6 away
+    assert F.clearance((-0.03, 0.4)) == pytest.approx(0.03)  # back of the left goal at x = -0.06
+    # 4 mm into the bottom wall: 0.001 m from its centre line y = -0.005, minus its half thickness 0.005
+    assert F.clearance((0.1, -0.004)) == pytest.approx(-0.004)
+
+
 def test_contains_keeps_a_ball_clear_of_the_walls_and_lets_it_into_the_goal_box():
     r = 0.02
     assert F.contains(F.centre_spot, margin=r)
     assert not F.contains((0.01, 0.1), margin=r)  # 0.01 m from the end wall < 0.02 m
-    assert F.contains((-0.03, 0.4), margin=r)  # in the left goal: -0.06 + 0.02 = -0.04 <= -0.03 <= -0.02
+    assert F.contains((-0.03, 0.4), margin=r)  # in the left goal: 0.03 m from its back, 0.12 m from its sides
     assert not F.contains((-0.03, 0.2), margin=r)  # behind the end wall, beside the goal
-    assert not F.contains((-0.05, 0.4), margin=r)  # -0.05 < -0.04: overlaps the back of the goal
+    assert not F.contains((-0.05, 0.4), margin=r)  # 0.01 m from the back of the goal
+    assert not F.contains((-0.2, 0.4), margin=0.0)  # far behind the goal: off the pitch, though clear of walls
+    # beside the upper post, whose corner is rounded: the nearest wall is the joint's cap around
+    # (-0.005, 0.525), of radius 0.005, at sqrt(0.02² + 0.02²) - 0.005 = 0.0233 m >= 0.02 m
+    assert F.contains((0.015, 0.505), margin=r)
+    assert not F.contains((0.012, 0.508), margin=r)  # sqrt(0.017² + 0.017²) - 0.005 = 0.0190 m < 0.02 m
 
 
 @pytest.mark.parametrize("kwargs, name", [
