@@ -11,6 +11,7 @@ runner never asks which architecture it runs.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 from typing import Any, Callable, NamedTuple
 
 import jax.numpy as jnp
@@ -61,6 +62,21 @@ class Controller:
     step: Callable[[Any, Observation], tuple[Any, Any]]
     params: Any = None
     robot: RobotParams = KHEPERA
+
+
+def ring(robot: RobotParams, which: str) -> SensorSet:
+    """The robot's IR ring named by an architecture's ``sensors`` parameter: ``"short"`` or ``"long"``."""
+    return robot.short_range if which == "short" else robot.long_range
+
+
+def on_ring(name: str, spec: str, params, init, step, robot: RobotParams) -> Controller:
+    """The :class:`Controller` of an architecture whose jitted ``step(state, obs, angles, *, p, robot)`` reads
+    the IR ring ``params.sensors`` (its directions passed as ``angles``) and whose ``init(params)`` gives
+    the fresh state — the motor schemas and the discrete architectures."""
+    sensors = ring(robot, params.sensors)
+    run = partial(step, angles=jnp.asarray(sensor_angles(sensors)), p=params, robot=robot)
+    return Controller(name=name, spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
+                      robot=robot)
 
 
 def proximity(readings, sensors: SensorSet, xp=jnp):

@@ -47,7 +47,7 @@ import jax
 import jax.numpy as jnp
 
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, sensor_angles
+from robots.controllers.base import Controller, Observation, on_ring, ring
 from robots.controllers.discrete import free_ahead, rotate, sense, wheels, wrap
 from robots.params import KHEPERA, RobotParams
 
@@ -176,7 +176,7 @@ def vote(points, valid, target, final, theta, last, p: DamnParams, robot: RobotP
 
 def votes(state: DamnState, obs: Observation, angles, p: DamnParams, robot: RobotParams):
     """The state after this tick's sensing and the tick's :class:`Votes`."""
-    sensors = robot.short_range if p.sensors == "short" else robot.long_range
+    sensors = ring(robot, p.sensors)
     memory, points, valid = sense(state.memory, obs, angles, radius=robot.radius, range_m=sensors.range_m,
                                   merge=p.merge, memory_s=p.memory_s)
     pose = jnp.asarray(obs.pose, jnp.float32)
@@ -197,8 +197,4 @@ def step(state: DamnState, obs: Observation, angles, *, p: DamnParams, robot: Ro
 
 def build(params: DamnParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA, spec: str = "damn") -> Controller:
     """DAMN on ``robot`` (it drives no EKM: ``ekm`` and ``cfg`` are None)."""
-    sensors = robot.short_range if params.sensors == "short" else robot.long_range
-    angles = jnp.asarray(sensor_angles(sensors))
-    run = partial(step, angles=angles, p=params, robot=robot)
-    return Controller(name="damn", spec=spec, sensors=sensors, init=partial(init, params), step=run,
-                      params=params, robot=robot)
+    return on_ring("damn", spec, params, init, step, robot)

@@ -74,7 +74,7 @@ import jax
 import jax.numpy as jnp
 
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, sensor_angles
+from robots.controllers.base import Controller, Observation, on_ring, ring
 from robots.controllers.discrete import (bearing, free_ahead, in_the_way, rotate, sense, way_out, wheels, world_point,
                                          wrap)
 from robots.params import KHEPERA, RobotParams
@@ -306,7 +306,7 @@ def execute(state: DeliberationState, points, valid, obs: Observation, p: Delibe
 def tick(state: DeliberationState, obs: Observation, angles, p: DeliberationParams, robot: RobotParams):
     """Sense, deliberate if it is time (and, below ``full``, if the executor is idle or its schema has run
     ``max_s``), execute: (state, (v, ω))."""
-    sensors = robot.short_range if p.sensors == "short" else robot.long_range
+    sensors = ring(robot, p.sensors)
     memory, points, valid = sense(state.memory, obs, angles, radius=robot.radius, range_m=sensors.range_m,
                                   merge=p.merge, memory_s=p.memory_s)
     t = jnp.asarray(obs.t, jnp.float32)
@@ -336,8 +336,4 @@ def step(state: DeliberationState, obs: Observation, angles, *, p: DeliberationP
 def build(params: DeliberationParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA,
           spec: str = "deliberation") -> Controller:
     """Reactive deliberation on ``robot`` (it drives no EKM: ``ekm`` and ``cfg`` are None)."""
-    sensors = robot.short_range if params.sensors == "short" else robot.long_range
-    angles = jnp.asarray(sensor_angles(sensors))
-    run = partial(step, angles=angles, p=params, robot=robot)
-    return Controller(name="deliberation", spec=spec, sensors=sensors, init=partial(init, params), step=run,
-                      params=params, robot=robot)
+    return on_ring("deliberation", spec, params, init, step, robot)

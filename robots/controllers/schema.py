@@ -83,7 +83,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from robots.controllers.base import Controller, Observation, sensor_angles, velocity_to_wheels
+from robots.controllers.base import Controller, Observation, on_ring, velocity_to_wheels
 from robots.params import KHEPERA, RobotParams
 
 
@@ -231,8 +231,4 @@ def step(state: SchemaState, obs: Observation, angles, *, p: SchemaParams, robot
 
 def build(params: SchemaParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA, spec: str = "schema") -> Controller:
     """Motor schemas on ``robot`` (they drive no EKM: ``ekm`` and ``cfg`` are None)."""
-    sensors = robot.short_range if params.sensors == "short" else robot.long_range
-    angles = jnp.asarray(sensor_angles(sensors))
-    run = partial(step, angles=angles, p=params, robot=robot)
-    return Controller(name="schema", spec=spec, sensors=sensors, init=partial(init, params), step=run,
-                      params=params, robot=robot)
+    return on_ring("schema", spec, params, init, step, robot)

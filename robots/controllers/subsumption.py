@@ -63,7 +63,7 @@ import jax
 import jax.numpy as jnp
 
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, sensor_angles
+from robots.controllers.base import Controller, Observation, on_ring, ring
 from robots.controllers.discrete import in_the_way, sense, way_out, wheels, wrap
 from robots.params import KHEPERA, RobotParams
 
@@ -287,7 +287,7 @@ def layers(state: SubsumptionState, obs: Observation, angles, p: SubsumptionPara
 @partial(jax.jit, static_argnames=("p", "robot"))
 def step(state: SubsumptionState, obs: Observation, angles, *, p: SubsumptionParams, robot: RobotParams):
     """One tick: the layers, then the response's wheel speeds, forward motion inhibited by collide."""
-    sensors = robot.short_range if p.sensors == "short" else robot.long_range
+    sensors = ring(robot, p.sensors)
     state, tick = layers(state, obs, angles, p, robot.radius, sensors.range_m)
     v, omega = p.table()[tick.response]
     v = jnp.where(tick.halted, jnp.minimum(v, 0.0), v)
@@ -297,8 +297,4 @@ def step(state: SubsumptionState, obs: Observation, angles, *, p: SubsumptionPar
 def build(params: SubsumptionParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA,
           spec: str = "subsumption") -> Controller:
     """Subsumption on ``robot`` (it drives no EKM: ``ekm`` and ``cfg`` are None)."""
-    sensors = robot.short_range if params.sensors == "short" else robot.long_range
-    angles = jnp.asarray(sensor_angles(sensors))
-    run = partial(step, angles=angles, p=params, robot=robot)
-    return Controller(name="subsumption", spec=spec, sensors=sensors, init=partial(init, params), step=run,
-                      params=params, robot=robot)
+    return on_ring("subsumption", spec, params, init, step, robot)
