@@ -263,7 +263,7 @@ def test_concave_polygons_are_split_into_convex_pieces_that_tile_them():
 def _static_only():
     import pymunk
 
-    from robots.world import ROBOT_CATEGORY
+    from robots.body import ROBOT_CATEGORY
 
     return pymunk.ShapeFilter(mask=pymunk.ShapeFilter.ALL_MASKS() ^ ROBOT_CATEGORY)
 
