@@ -391,6 +391,8 @@ def _join(key: str, sub: str) -> str:
 def parse_world(doc, source: str = "<world>") -> World:
     """Build a :class:`World` from a decoded JSON document, checking every key (see module docstring)."""
     ck = _Checker(source)
+    if isinstance(doc, dict) and "soccer" in doc:  # robots.soccer.fieldfile
+        ck.fail("", f"is a soccer field, not a world: use ekm match --field {source}")
     ck.obj(doc, "", _WORLD_REQUIRED, _WORLD_OPTIONAL)
     name = ck.string(doc["name"], "name")
     size = ck.vector(doc["size"], "size", 2, "[width, height] (m)", positive=True)
