@@ -285,10 +285,10 @@ def make_spec(name: str, values: dict[str, str]) -> ArchitectureSpec:
         raise InputError(f"architecture {name}: {exc}") from None
 
 
-def _typed(name: str, f, text: str):
+def _typed(name: str, f, text: str, what: str = "architecture"):
     kind = f.type if isinstance(f.type, str) else f.type.__name__
     choices = f.metadata.get("choices")
-    where = f"architecture {name}: {f.name}"
+    where = f"{what} {name}: {f.name}"
     if choices:
         if text not in choices:
             raise InputError(f"{where}: must be one of {', '.join(choices)}, got {text!r}")

@@ -1,0 +1,420 @@
+"""Samba for Soccer (Riekki 1999, ch. 5) on a Khepera: action maps for the ball, the goals and the opponent,
+combined by MAV and arbitrated as his player's tasks, the heaviest action sent to the wheels.
+
+**Contract** (:mod:`robots.soccer.play`): ``step(state, play) -> (state, wheels)``, jitted; ``play`` is the
+game in the player's own frame — it defends the goal at x = 0 and attacks the goal at x = ``field.length``
+— and ``wheels`` are ``(2,)`` speeds (m/s, left and right) within ±c*. Metres, seconds, radians throughout.
+:func:`maps` is the tick without the wheels (pure: a recorded ``(state, play)`` gives the maps the game used).
+
+**Object markers** (§5.1, Table 5) come from the overhead camera, exactly and at once (Riekki's Vision): Ball
+(x, y, vx, vy, radius ``ball_radius``), Opp (x, y, vx, vy, the player's own radius), the two goals, and Me
+(the pose). They are seen from the robot (§3.3.4: robot frame, 0 = ahead, + = left). The IR ring is carried
+(``sensors``) but no map reads it: the ball rolls below it and the opponent is a marker. No map has the
+walls either (Riekki's composite maps have none); the task markers' points below are kept inside the
+field instead. Riekki's markers move at constant velocity. The ball here rolls to a stop (friction
+``rolling_friction``), and a kicked ball is faster than its kicker, so it would stay "out of reach" until
+it slows: for the kick point, the defensive location and the players' times (:func:`chased`) the ball is
+taken at its velocity when a player can touch it before it stops, else at rest where it will stop. The kick
+and Avoid maps, which look at the next touch, use its velocity as it is.
+
+**Primitive maps** (§3.2, Table 6) over a :class:`~robots.controllers.actionmaps.VelocityGrid` of
+``directions`` × ``speeds`` up to c*, on the weight curve of :mod:`~robots.controllers.actionmaps`:
+
+- ``goto_ball`` — GotoBall: OSA for a circular object (§3.2.4, Fig. 24; §5.2: "the OSA method was utilized"),
+  the ball enlarged by the robot's radius and moving at its velocity, so the heaviest action leads a
+  rolling ball to the earliest point it can be met (Fig. 23).
+- **Kicks.** The Khepera has no kicker; it moves the ball by touching it, and the touch sends the ball along
+  the line of centres. So Riekki's impulse maps are read back onto the velocity actions that give the
+  impulses: for every action, the exact first touch of the robot's disc on the moving ball (the separate
+  procedure of §3.2.6, :func:`actionmaps.collision_times`), the line of centres n then, and the ball's
+  velocity after it, v_b + (1 + e)·((v − v_b)·n)·n for a ball much lighter than the robot (``restitution``
+  e). Like his impulse maps they are not propagated (§3.2.5).
+
+  - ``make_goal`` — KicktoGoal/KickFar: the actions whose touch sends the ball across the goal line between
+    the opponent's posts less ``aim_margin``, weighed by the time until the ball is there (the touch, then
+    the ball's flight at its new speed; friction left out) — so a hard, straight kick outweighs a glancing
+    one, as KickFar favours "directing the ball towards the opponents goal at a high speed".
+  - ``dont_kick_opp`` — DontKicktoOpp: −weight of the time until the kicked ball meets the opponent's disc,
+    the opponent keeping its velocity (as his KicktoTeam assumes of a team-mate; his opponents also had a
+    reaction time and a speed of their own, which would make a goalkeeper block every shot at this scale).
+  - ``dribble`` — KickNear: GotoBall filtered (§3.2.8; a mask as Fig. 47, a goal's sector as Fig. 31) to
+    the actions whose touch sends the ball within ``dribble_sector`` of the direction to the goal's centre.
+    Its weights are the times to reach the ball, not the ball's, so no DontKicktoOpp map is combined with
+    it (its times run past the touch and could never win the MAV).
+- ``goto_kick`` — GotoLoc (§5.1: the projecting method for a point): OSA to the **kick point**, ``gap``
+  behind the touching distance on the line from the goal's centre through the ball, moving with the
+  ball — where a player stands to drive through the ball towards the goal.
+- ``goto_defloc`` — GotoDefloc (§5.1, Fig. 45: a default location that moves along a line with the ball):
+  OSA to the **defensive location** on the line from the home goal's centre to the ball, a fraction
+  ``defend_frac`` of the way (at least ``defend_min`` from the goal, never nearer the ball than the kick
+  point), with the navigation Samba's time constraint: speeds above distance / ``brake_s`` filtered, so
+  the player stops there.
+- ``avoid_opp`` — AvoidOpp: "heavy weights only for the actions causing a collision, because in soccer it
+  is important not to avoid other players too much" (§5.1): −weight of the exact time to collision with
+  the opponent's disc grown by ``clearance`` (§3.2.6's separate procedure: no projecting), filtered at
+  ``avoid_ttc`` (§3.2.8, Fig. 30).
+- ``avoid_ball`` — AvoidBall, the same for the ball, filtered at ``ball_ttc`` = 1.5 s as in Riekki's
+  MovetoSpecloc: every move that is not a kick keeps off the ball, for a Khepera touching it *is* kicking.
+
+**Composite maps** (§3.2.7, Table 7) and **the arbiter** (§5.1): the tasks in Riekki's order, the first
+whose valid conditions hold and whose composite map has a positive action is performed (§3.1: "selects
+the best action from the first composite map producing an action good enough"); SpecialSituation,
+LookAround and Pass have no counterpart here (no set pieces, the camera sees everything, no team-mate):
+
+0. ``make_goal`` = MAV(make_goal, dont_kick_opp, AvoidOpp before the touch): valid when a positive action
+   touches the ball within ``kick_s`` (Riekki: "if the ball is near enough, the player kicks it. It favors
+   scoring a goal"). AvoidOpp is filtered to the collisions that come before the touch: the kick maps'
+   times run past it, and a collision after the kick is no reason not to kick.
+1. ``dribble`` = MAV(dribble, AvoidOpp before the touch): valid as make_goal ("if the weight of the best
+   action to score a goal is too low ... the player dribbles the ball"). Riekki's Dribble kicks slowly;
+   here the push is as fast as the touch, a Khepera's touch sends the ball at most ~0.27 m/s.
+2. ``catch_ball`` = MAV(goto_kick, avoid_opp, avoid_ball): gain possession, valid unless the opponent has
+   the ball (Riekki: "if ... no team-mate is nearer the ball, the player tries to gain possession"; in
+   one-on-one the other player nearer is the opponent). A Khepera possesses the ball only from behind, so
+   this is his MovetoSpecloc recipe, MAV(GotoLoc, AvoidOpp, filter(AvoidBall, 1.5)), with the kick point
+   as the special location.
+3. ``defloc`` = MAV(goto_defloc, avoid_opp, avoid_ball): the opponent has the ball — it can be at its kick
+   point (the mirror of ours, on the far side of the ball from our goal) within ``threat_s`` and before
+   the player at its own, and the ball is within ``defend_range`` of the home goal's centre — so back to the
+   defensive location between the ball and the home goal (MovetoDefloc; AvoidBall added so the way back
+   does not push the ball towards the goal). Also the fallback when catch_ball has no positive action.
+   The times are the earliest meetings at c* with the points as they move with the ball
+   (:func:`actionmaps.earliest_collision`), straight lines that ignore turning and going round the ball.
+   Further from the goal, or with the opponent not yet at the ball, the player contests the ball instead:
+   an opponent that stands by the ball (a goalkeeper at its own goal) would otherwise hold it off for ever.
+4. ``turn_to_ball``: Riekki's last task, executed without a map: turn on the spot to face the ball.
+
+"When a task has been selected, it remains active as long as its valid conditions are fulfilled" (§5.1) is
+taken as hysteresis in the conditions: the task of the last tick keeps a kick valid up to ``kick_s +
+stay_s`` and the choice between catching and defending moves only when the other player is ``stay_s``
+ahead. The heaviest action of the chosen composite reaches the wheels as in the navigation Samba
+(:mod:`robots.controllers.samba`): its arbiter's hysteresis on the last direction (``tie``, ``keep``), the
+direction refined between its neighbours, the straight-ahead part of a turn slowed to what the map does
+not inhibit (:func:`~robots.controllers.samba.forward_speed`), then
+:func:`~robots.controllers.base.velocity_to_wheels`.
+
+**Defaults.** Riekki's numbers are for the Soccer Server (players 1.2 m/s, a 105 m field, 10 Hz); at
+Khepera scale (c* = 0.16 m/s, a 1.2 × 0.8 m field, 0.128 s ticks) these are our choices: a 36 × 4 grid
+(10°, 4 cm/s steps — the touch geometry is exact, the grid only samples it, and the chosen direction is
+refined); ``kick_s`` 1 s (16 cm at c*: three ball-and-robot radii, where a straight drive still hits the
+ball where it aims); ``gap`` 2 cm; ``aim_margin`` the ball's radius (the whole ball between the posts);
+``dribble_sector`` 45°; ``avoid_ttc`` 1 s and ``clearance`` 5 mm (Riekki gives AvoidOpp no filter; the
+navigation Samba's 0.5 s is for obstacles that do not come at the robot); ``ball_ttc`` 1.5 s (Riekki's);
+``defend_frac`` ½ and ``defend_min`` 6 cm (half way between goal and ball, as the default locations of
+Fig. 45 follow the ball); ``threat_s`` 1 s (as near its kick point as ``kick_s`` puts a player near the
+ball); ``defend_range`` 0.6 m (our half, measured from the goal's centre); ``stay_s`` 0.5 s;
+``restitution`` 0.7 and ``rolling_friction`` 0.15 m/s² (the ball of :mod:`robots.soccer.ball` and its
+contact with a robot); the weight curve, ``tie``, ``keep`` and ``brake_s`` as the navigation Samba's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cache, partial
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+
+from robots.controllers import actionmaps as am
+from robots.controllers import samba as nav
+from robots.controllers.base import Controller, ring, velocity_to_wheels
+from robots.params import KHEPERA, RobotParams
+from robots.soccer.field import Field
+from robots.soccer.play import Play
+
+#: The tasks in the arbiter's order (module docstring); a state's ``task`` indexes this (−1 before the first).
+TASKS = ("make_goal", "dribble", "catch_ball", "defloc", "turn_to_ball")
+
+
+@dataclass(frozen=True)
+class SoccerSambaParams:
+    """Parameters of the Samba soccer player (module docstring: what each does and why its default)."""
+
+    sensors: str = field(default="long", metadata={"help": "IR ring carried (no map reads it): long or short",
+                                                   "choices": ("short", "long")})
+    directions: int = field(default=36, metadata={"help": "directions of the velocity maps (count; 36 = 10° apart)"})
+    speeds: int = field(default=4, metadata={"help": "speeds of the velocity maps, evenly up to c* (count)"})
+    full_s: float = field(default=am.FULL_S, metadata={"help": "weight curve: full weight up to this time (s)"})
+    tau_s: float = field(default=am.TAU_S, metadata={"help": "weight curve: exponential fall's time constant (s)"})
+    ball_radius: float = field(default=0.02, metadata={"help": "the ball's radius (m)"})
+    restitution: float = field(default=0.7, metadata={"help": "ball–robot restitution the kick maps assume (ratio)"})
+    aim_margin: float = field(default=0.02, metadata={"help": "make_goal: the ball's line must pass this far "
+                                                              "inside the posts (m)"})
+    dribble_sector: float = field(default=0.7853981633974483,
+                                  metadata={"help": "dribble: the ball's direction within this of the direction "
+                                                    "to the goal's centre (rad)"})
+    kick_s: float = field(default=1.0, metadata={"help": "a kick task is valid when a positive action touches "
+                                                         "the ball within this time (s)"})
+    gap: float = field(default=0.02, metadata={"help": "kick point: this far behind the touching distance (m)"})
+    avoid_ttc: float = field(default=1.0, metadata={"help": "AvoidOpp filter: collisions later than this are not "
+                                                            "inhibited (s)"})
+    clearance: float = field(default=0.005, metadata={"help": "added to the radii in the Avoid maps (m)"})
+    ball_ttc: float = field(default=1.5, metadata={"help": "AvoidBall filter: touches later than this are not "
+                                                           "inhibited (s; Riekki's MovetoSpecloc)"})
+    defend_frac: float = field(default=0.5, metadata={"help": "defensive location: this fraction of the way from "
+                                                              "the home goal's centre to the ball (ratio)"})
+    defend_min: float = field(default=0.06, metadata={"help": "defensive location: at least this far from the "
+                                                             "home goal's centre (m)"})
+    rolling_friction: float = field(default=0.15, metadata={"help": "the ball's rolling deceleration the markers "
+                                                                   "assume (m/s²)"})
+    threat_s: float = field(default=1.0, metadata={"help": "the opponent has the ball when it can be at its kick "
+                                                           "point within this, before the player (s)"})
+    defend_range: float = field(default=0.6, metadata={"help": "the player defends only a ball within this of the "
+                                                               "home goal's centre (m)"})
+    stay_s: float = field(default=0.5, metadata={"help": "task hysteresis: the last tick's task keeps its "
+                                                         "conditions looser by this (s)"})
+    brake_s: float = field(default=0.2, metadata={"help": "defensive location: speeds above distance / brake_s "
+                                                          "are filtered (s)"})
+    tie: float = field(default=0.1, metadata={"help": "arbiter hysteresis: actions near the last one's direction "
+                                                      "count their time shorter by this (fraction)"})
+    keep: float = field(default=0.2, metadata={"help": "arbiter hysteresis: either side of the last action's "
+                                                       "direction that counts as near it (rad)"})
+    refine: bool = field(default=True, metadata={"help": "arbiter: refine the chosen direction between its "
+                                                         "neighbours (on/off)"})
+    guard: bool = field(default=True, metadata={"help": "arbiter: slow a turn's straight-ahead motion to what the "
+                                                        "composite map does not inhibit (on/off)"})
+
+    def __post_init__(self):
+        if self.sensors not in ("short", "long"):
+            raise ValueError(f"sensors must be short or long, got {self.sensors!r}")
+        for name in ("tau_s", "ball_radius", "dribble_sector", "kick_s", "avoid_ttc", "ball_ttc", "brake_s"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
+        for name in ("full_s", "aim_margin", "gap", "clearance", "defend_min", "stay_s", "keep", "rolling_friction",
+                     "threat_s", "defend_range"):
+            if not getattr(self, name) >= 0:
+                raise ValueError(f"{name} must be >= 0, got {getattr(self, name)}")
+        if not 0 <= self.restitution <= 1 or not 0 <= self.defend_frac <= 1 or not 0 <= self.tie < 1:
+            raise ValueError("restitution and defend_frac must be in [0, 1] and tie in [0, 1)")
+        if self.directions < 4 or self.speeds < 1:
+            raise ValueError("directions >= 4 and speeds >= 1 are needed")
+
+    def grid(self, robot: RobotParams = KHEPERA) -> am.VelocityGrid:
+        """The velocity maps' actions: ``directions`` × ``speeds`` up to the robot's c*."""
+        return am.VelocityGrid(self.directions, self.speeds, robot.max_wheel_speed)
+
+
+class SoccerSambaState(NamedTuple):
+    """What the player carries between ticks: the task performed last (index into :data:`TASKS`, −1 before
+    the first) and the world direction of the last action sent (NaN before the first), for the hysteresis."""
+
+    task: jax.Array
+    heading: jax.Array
+
+
+class Tick(NamedTuple):
+    """One tick (:func:`maps`): the state after it; the primitive maps ``(n_dir, n_speed)`` of the module
+    docstring (``avoid_opp`` before its filtering to the collisions before the touch); ``composite``
+    ``(4, n_dir, n_speed)``, the composite maps of tasks 0–3; ``valid`` ``(5,)``, which tasks could be
+    performed; the ``task`` performed, its action (indices ``i, j``, ``direction`` in the robot frame,
+    ``speed``); the ``kick_point`` and ``defloc`` ``(2,)`` (field, own frame) and the times ``t_me`` and
+    ``t_opp`` (s) each player needs to its kick point."""
+
+    state: SoccerSambaState
+    goto_ball: jax.Array
+    make_goal: jax.Array
+    dont_kick_opp: jax.Array
+    dribble: jax.Array
+    goto_kick: jax.Array
+    goto_defloc: jax.Array
+    avoid_opp: jax.Array
+    avoid_ball: jax.Array
+    composite: jax.Array
+    valid: jax.Array
+    task: jax.Array
+    i: jax.Array
+    j: jax.Array
+    direction: jax.Array
+    speed: jax.Array
+    kick_point: jax.Array
+    defloc: jax.Array
+    t_me: jax.Array
+    t_opp: jax.Array
+
+
+@cache
+def init(p: SoccerSambaParams) -> SoccerSambaState:
+    return SoccerSambaState(jnp.asarray(-1, jnp.int32), jnp.asarray(jnp.nan, jnp.float32))
+
+
+def _unit(v):
+    return v / jnp.maximum(jnp.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
+
+
+def _inside(point, field: Field, margin: float):
+    """``point`` moved into the field, ``margin`` from its edges."""
+    return jnp.stack([jnp.clip(point[0], margin, field.length - margin),
+                      jnp.clip(point[1], margin, field.width - margin)])
+
+
+def task_points(ball, p: SoccerSambaParams, field: Field, robot: RobotParams):
+    """The task markers (field frame): our kick point, the opponent's (its mirror: behind the ball as seen
+    from our goal) and the defensive location (module docstring)."""
+    b = ball[:2]
+    ours, home = jnp.asarray([field.length, 0.5 * field.width]), jnp.asarray([0.0, 0.5 * field.width])
+    behind = robot.radius + p.ball_radius + p.gap
+    margin = robot.radius + p.clearance
+    kick = _inside(b - behind * _unit(ours - b), field, margin)
+    theirs = _inside(b + behind * _unit(b - home), field, margin)
+    d = jnp.linalg.norm(b - home)
+    along = jnp.maximum(jnp.minimum(jnp.maximum(p.defend_frac * d, p.defend_min), d - behind), 0.0)
+    defloc = _inside(home + along * _unit(b - home), field, margin)
+    return kick, theirs, defloc
+
+
+def chased(ball, chaser, p: SoccerSambaParams, robot: RobotParams):
+    """The ball marker ``(4,)`` as a player at ``chaser`` (field frame) chases it: at its velocity when the player,
+    at c*, can touch it before its rolling friction stops it (after |v| / ``rolling_friction`` s), else at
+    rest where it will stop, |v|² / (2 ``rolling_friction``) further on (module docstring)."""
+    if p.rolling_friction == 0:
+        return ball
+    b, v = ball[:2], ball[2:4]
+    speed = jnp.linalg.norm(v)
+    t = am.earliest_collision(b - chaser, v, robot.radius + p.ball_radius, robot.max_wheel_speed)
+    early = t <= speed / p.rolling_friction
+    stop = b + v * speed / (2.0 * p.rolling_friction)
+    return jnp.where(early, ball, jnp.concatenate([stop, jnp.zeros(2)]))
+
+
+def touches(play: Play, p: SoccerSambaParams, robot: RobotParams):
+    """Every action's touch on the ball: the time ``(n_dir, n_speed)`` until the robot's disc first touches the
+    moving ball (``inf``: never), where the ball's centre is then and its velocity after the touch
+    ``(n_dir, n_speed, 2)`` (field frame) — v_b + (1 + e)·max((v − v_b)·n, 0)·n with n the line of centres."""
+    grid = p.grid(robot)
+    pose = jnp.asarray(play.pose, jnp.float32)
+    ball = jnp.asarray(play.ball, jnp.float32)
+    theta = pose[2]
+    b = nav._to_robot(ball[:2] - pose[:2], theta)
+    vb = nav._to_robot(ball[2:4], theta)
+    t = am.collision_times(b[None], vb[None], jnp.asarray([robot.radius + p.ball_radius]), grid)
+    tt = jnp.where(jnp.isfinite(t), t, 0.0)[..., None]
+    v = jnp.asarray(grid.velocities())
+    centre = b + vb * tt  # the ball at the touch, robot frame (the robot is at v·t)
+    n = _unit(centre - v * tt)
+    push = jnp.maximum(jnp.sum((v - vb) * n, axis=-1, keepdims=True), 0.0)
+    out = vb + (1.0 + p.restitution) * push * n
+    # back to the field frame: _to_robot by −θ turns by +θ
+    return t, pose[:2] + nav._to_robot(centre, -theta), nav._to_robot(out, -theta)
+
+
+def kicks(play: Play, p: SoccerSambaParams, field: Field, robot: RobotParams):
+    """The kick maps' times and masks ``(n_dir, n_speed)`` (module docstring): each action's time to touch the
+    ball; the time the ball then takes, at its speed after the touch, to the goal line (``inf`` if it does not
+    go that way); whether it crosses the line between the posts less ``aim_margin`` (make_goal) and whether it
+    leaves within ``dribble_sector`` of the direction to the goal's centre (dribble)."""
+    t, at, out = touches(play, p, robot)
+    hit = jnp.isfinite(t) & (jnp.linalg.norm(out - jnp.asarray(play.ball[2:4], jnp.float32), axis=-1) > 1e-6)
+    y0, y1 = field.mouth
+    forward = out[..., 0] > 1e-6
+    flight = jnp.where(forward, (field.length - at[..., 0]) / jnp.where(forward, out[..., 0], 1.0), jnp.inf)
+    cross = at[..., 1] + out[..., 1] * jnp.where(forward, flight, 0.0)
+    goal = hit & forward & (cross >= y0 + p.aim_margin) & (cross <= y1 - p.aim_margin)
+    to_goal = jnp.asarray([field.length, 0.5 * field.width]) - at
+    off = am.wrap(jnp.arctan2(out[..., 1], out[..., 0]) - jnp.arctan2(to_goal[..., 1], to_goal[..., 0]))
+    dribble = hit & (jnp.abs(off) <= p.dribble_sector)
+    return t, at, out, flight, goal, dribble
+
+
+def ball_meets(at, out, t, opponent, radius: float):
+    """For kicks from ``at`` ``(n_dir, n_speed, 2)`` at velocity ``out`` after touches at times ``t``: how long
+    after the touch the ball meets the opponent's disc (``radius``: its radius plus the ball's), the opponent
+    ``(5,)`` keeping its velocity (``inf``: never)."""
+    vo = opponent[3:5]
+    tt = jnp.where(jnp.isfinite(t), t, 0.0)[..., None]
+    q = (at - (opponent[:2] + vo * tt)).reshape(-1, 2)
+    u = (out - vo).reshape(-1, 2)
+    meet = jax.vmap(lambda q, u: am.earliest_collision(q, u, radius, 0.0))(q, u)
+    return meet.reshape(t.shape)
+
+
+def _seen(play: Play, point, velocity):
+    """A field-frame point and velocity as seen from the robot (position, velocity in the robot frame)."""
+    pose = jnp.asarray(play.pose, jnp.float32)
+    return nav._to_robot(point - pose[:2], pose[2]), nav._to_robot(velocity, pose[2])
+
+
+def maps(state: SoccerSambaState, play: Play, p: SoccerSambaParams, field: Field = Field(),
+         robot: RobotParams = KHEPERA) -> Tick:
+    """The player's maps, the task and the action of one tick (module docstring); pure."""
+    grid = p.grid(robot)
+    ball = jnp.asarray(play.ball, jnp.float32)
+    opp = jnp.asarray(play.opponent, jnp.float32)
+    me = jnp.asarray(play.pose, jnp.float32)
+    c = robot.max_wheel_speed
+    touch = robot.radius + p.ball_radius
+    w = partial(am.weight, full=p.full_s, tau=p.tau_s)
+
+    # primitive maps
+    b, vb = _seen(play, ball[:2], ball[2:4])
+    goto_ball = am.osa(b, vb, grid, radius=touch, full=p.full_s, tau=p.tau_s)
+    t_touch, at, out, flight, goal, aimed = kicks(play, p, field, robot)
+    make_goal = jnp.where(goal, w(t_touch + flight), 0.0)
+    dribble = am.apply_mask(goto_ball, aimed)
+    meet = ball_meets(at, out, t_touch, opp, touch)
+    dont_kick_opp = jnp.where(jnp.isfinite(t_touch), -w(t_touch + meet), 0.0)
+    mine = chased(ball, me[:2], p, robot)
+    kick, _, defloc = task_points(mine, p, field, robot)
+    k, vk = _seen(play, kick, mine[2:4])
+    goto_kick = am.osa(k, vk, grid, full=p.full_s, tau=p.tau_s)
+    dl, _ = _seen(play, defloc, jnp.zeros(2))
+    goto_defloc = am.apply_mask(am.osa(dl, jnp.zeros(2), grid, full=p.full_s, tau=p.tau_s),
+                                am.speed_mask(grid, jnp.linalg.norm(dl) / p.brake_s))
+    o, vo = _seen(play, opp[:2], opp[3:5])
+    t_opp_hit = am.collision_times(o[None], vo[None], jnp.asarray([2.0 * robot.radius + p.clearance]), grid)
+    avoid_opp = am.filter_times(am.avoid(t_opp_hit, p.full_s, p.tau_s), t_opp_hit, p.avoid_ttc)
+    before_touch = am.filter_map(avoid_opp, t_opp_hit >= t_touch)  # for kicks: the collisions before the touch
+    t_ball_hit = am.collision_times(b[None], vb[None], jnp.asarray([touch + p.clearance]), grid)
+    avoid_ball = am.filter_times(am.avoid(t_ball_hit, p.full_s, p.tau_s), t_ball_hit, p.ball_ttc)
+
+    # composite maps (Table 7) and the arbiter's task
+    composite = jnp.stack([am.mav(make_goal, dont_kick_opp, before_touch), am.mav(dribble, before_touch),
+                           am.mav(goto_kick, avoid_opp, avoid_ball), am.mav(goto_defloc, avoid_opp, avoid_ball)])
+    best = jnp.max(composite, axis=(1, 2))
+    t_me = am.earliest_collision(k, vk, 0.0, c)
+    yours = chased(ball, opp[:2], p, robot)
+    _, theirs, _ = task_points(yours, p, field, robot)
+    t_opp = am.earliest_collision(theirs - opp[:2], yours[2:4], 0.0, c)
+    last = state.task
+
+    def kick_ok(n):  # a positive action on the composite that touches the ball soon enough
+        soon = t_touch <= p.kick_s + jnp.where(last == n, p.stay_s, 0.0)
+        return jnp.any((composite[n] > 0) & soon)
+
+    held = jnp.where(last == 3, p.stay_s, 0.0)  # defending: its conditions looser
+    band = jnp.where(last == 3, p.stay_s, jnp.where(last == 2, -p.stay_s, 0.0))
+    near_home = jnp.linalg.norm(ball[:2] - jnp.asarray([0.0, 0.5 * field.width])) <= p.defend_range + held
+    threat = (t_opp <= p.threat_s + held) & (t_opp < t_me + band) & near_home
+    valid = jnp.stack([kick_ok(0), kick_ok(1), ~threat & (best[2] > 0), best[3] > 0, jnp.asarray(True)])
+    task = jnp.argmax(valid).astype(jnp.int32)
+
+    # the action: the navigation Samba's arbiter on the task's map, or a turn towards the ball
+    chosen = composite[jnp.minimum(task, 3)]
+    theta = me[2]
+    i, j, _ = nav.arbiter(chosen, state.heading, theta, p, grid)
+    mapped = task < 4
+    direction = jnp.asarray(grid.angles())[i]
+    if p.refine:
+        direction = direction + jnp.where(mapped, nav.refine(chosen, i, j), 0.0) * grid.step_angle
+    speed = jnp.asarray(grid.speed_values())[j]
+    if p.guard:
+        speed = nav.forward_speed(direction, speed, chosen, grid)
+    direction = jnp.where(mapped, direction, jnp.arctan2(b[1], b[0]))
+    speed = jnp.where(mapped, speed, 0.0)
+    heading = jnp.where(mapped, am.wrap(theta + direction), state.heading)
+    return Tick(SoccerSambaState(task, heading), goto_ball, make_goal, dont_kick_opp, dribble, goto_kick, goto_defloc,
+                avoid_opp, avoid_ball, composite, valid, task, i, j, direction, speed, kick, defloc, t_me, t_opp)
+
+
+def step(state: SoccerSambaState, play: Play, *, p: SoccerSambaParams, field: Field = Field(),
+         robot: RobotParams = KHEPERA):
+    """One tick: :func:`maps`, then the action as wheel speeds (:func:`velocity_to_wheels`)."""
+    tick = maps(state, play, p, field, robot)
+    return tick.state, velocity_to_wheels(tick.direction, tick.speed, robot)
+
+
+def build(params: SoccerSambaParams, field: Field = Field(), robot: RobotParams = KHEPERA,
+          spec: str = "samba") -> Controller:
+    """The Samba soccer player on ``robot`` for ``field``."""
+    return Controller(name="samba", spec=spec, sensors=ring(robot, params.sensors), init=partial(init, params),
+                      step=jax.jit(partial(step, p=params, field=field, robot=robot)), params=params, robot=robot)
