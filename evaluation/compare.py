@@ -121,7 +121,7 @@ def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path
 
 
 def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | None = None,
-            retries: int = RETRIES) -> list[dict]:
+            retries: int = RETRIES, failed=None) -> list[dict]:
     """Run ``job_list`` on ``workers`` (:mod:`evaluation.workers`; in this process if None) and return their
     records in the jobs' order, whatever order they finished in.
 
@@ -130,6 +130,9 @@ def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | Non
     A run whose worker dies is run again on a fresh worker up to ``retries`` times, then recorded as failed
     with the reason; a run that raises is recorded as failed (:func:`run_job`). Ctrl-C
     (:mod:`ekm.interrupts`) raises KeyboardInterrupt here, between results; the caller stops the workers.
+    ``failed(job, reason)``: the record of a job that could not be made, for jobs that are not a
+    comparison's :class:`Job` (a soccer game, :func:`evaluation.match.game_failed`); by default
+    :func:`failed_record`, its reason led by the world.
     """
     from collections import deque
     from concurrent.futures import FIRST_COMPLETED, Future, wait
@@ -159,13 +162,15 @@ def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | Non
             return False
         job = job_list[i]
         if not workers.lost(exc):
-            finish(i, failed_record(job, f"{job.world}: {type(exc).__name__}: {exc}".splitlines()[0]))
+            reason = f"{type(exc).__name__}: {exc}".splitlines()[0]
+            finish(i, failed(job, reason) if failed else failed_record(job, f"{job.world}: {reason}"))
             return False
         attempts[i] += 1
         if attempts[i] <= retries:
             queue.appendleft(i)
         else:
-            finish(i, _lost_record(job, f"its worker died {attempts[i]} times ({type(exc).__name__})"))
+            reason = f"its worker died {attempts[i]} times ({type(exc).__name__})"
+            finish(i, failed(job, reason) if failed else _lost_record(job, reason))
         return True
 
     while queue or flying:
