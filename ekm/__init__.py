@@ -24,6 +24,10 @@ function                               returns                     command line
 ``load_comparison(results)``           :class:`Table`              ``ekm compare --from``
 ``architectures()``                    :class:`Architectures`      ``ekm architectures``
 ``register_architecture(name, ...)``   (an architecture)           (entry points: ``ekm.architectures``)
+``match(first, second, ...)``          :class:`MatchResult`        ``ekm match``
+``tournament(players, ...)``           :class:`TournamentResult`   ``ekm tournament``
+``players()``                          :class:`Players`            ``ekm players``
+``soccer_field(name_or_path)``         ``SoccerField``             (field files)
 =====================================  ==========================  ==================================
 
 Each result is a frozen dataclass whose ``to_dict()`` is the command's ``--json`` output, with
@@ -46,6 +50,9 @@ _EXPORTS = {
     "compare": "ekm.api.comparing", "Table": "ekm.api.comparing", "load_comparison": "ekm.api.comparing",
     "architectures": "ekm.api.architectures", "Architectures": "ekm.api.architectures",
     "register_architecture": "ekm.api.architectures", "Architecture": "ekm.api.architectures",
+    "match": "ekm.api.soccer", "MatchResult": "ekm.api.soccer", "tournament": "ekm.api.soccer",
+    "TournamentResult": "ekm.api.soccer", "players": "ekm.api.soccer", "Players": "ekm.api.soccer",
+    "soccer_field": "ekm.api.soccer",
     "InputError": "ekm.errors", "Interrupted": "ekm.errors",
 }
 

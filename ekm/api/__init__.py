@@ -5,7 +5,8 @@ One module per command, each holding its function and its result: :mod:`~ekm.api
 (``evaluate``, ``Metrics``), :mod:`~ekm.api.worlds` (``world``, ``worlds``), :mod:`~ekm.api.planning`
 (``plan``, ``Plan``), :mod:`~ekm.api.driving` (``run``, ``Outcome``), :mod:`~ekm.api.comparing`
 (``compare``, ``load_comparison``, ``Table``), :mod:`~ekm.api.architectures` (``architectures``,
-``register_architecture``); :mod:`~ekm.api.checks` checks arguments with the command line's messages and
+``register_architecture``), :mod:`~ekm.api.soccer` (``match``, ``tournament``, ``players``,
+``soccer_field``, ``MatchResult``, ``TournamentResult``); :mod:`~ekm.api.checks` checks arguments with the command line's messages and
 :mod:`~ekm.api.result` holds what the results share (``to_dict``). Nothing here imports JAX or pymunk
 until a function runs.
 """

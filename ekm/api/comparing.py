@@ -258,6 +258,9 @@ def load_comparison(path) -> Table:
     from evaluation.scenario import ScenarioConfig
 
     settings, records = read(path)
+    if not all(k in settings for k in ("worlds", "labels", "trials", "seed", "config")):
+        what = "a tournament's" if "tournament" in settings else "another command's"
+        raise InputError(f"{path}: {what} results file, not a comparison's (ekm compare --out writes those)")
     names, labels, trials = settings["worlds"], settings["labels"], settings["trials"]
     have = {key(r["given"], r["label"], r["trial"]): r for r in records}
     want = [key(w, a, i) for w in names for i in range(trials) for a in labels]
