@@ -176,6 +176,17 @@ def play_job(job: GameJob) -> dict:
     return out
 
 
+def game_key(record: dict) -> tuple[int, int, int]:
+    """A game's place in its round robin, from its record: the pairing (row, column) and the seed."""
+    i, j = record["pair"]
+    return (int(i), int(j), int(record["seed"]))
+
+
+def job_key(job: GameJob) -> tuple[int, int, int]:
+    """The :func:`game_key` the record of ``job`` will have."""
+    return (job.pair[0], job.pair[1], job.seed)
+
+
 def game_failed(job: GameJob, reason: str) -> dict:
     """The record of a game that could not be played."""
     return {"players": list(job.labels), "specs": [job.first, job.second], "seed": job.seed, "minutes": job.minutes,

@@ -1,4 +1,4 @@
-"""A comparison's results file: JSON Lines, one finished run a line, written as the runs finish.
+"""A comparison's (or a tournament's) results file: JSON Lines, one finished run a line, written as the runs finish.
 
 The first line is the header, the comparison's settings::
 
@@ -14,7 +14,8 @@ then one line per finished run, in the order the runs finished::
 Each line is written whole and flushed as its run arrives, so a crash loses at most the runs in flight;
 a line cut short by a crash (the last one) is dropped when the file is read again. A run is the same
 whatever process ran it (a pure function of its job), so the runs of a file and the runs still missing
-make the same table as an uninterrupted comparison.
+make the same table as an uninterrupted comparison. A tournament's file (``ekm tournament --out``) is the same
+format: its settings name the players, and each line is one game (:func:`evaluation.match.game_key`).
 """
 
 from __future__ import annotations
@@ -50,15 +51,15 @@ def _read(path: Path) -> tuple[dict, list[dict], int]:
     except json.JSONDecodeError:
         head = None
     if not isinstance(head, dict) or head.get("ekm_results") != FORMAT or not isinstance(head.get("settings"), dict):
-        raise InputError(f"{path}: not an ekm compare results file (its first line is not the header of format "
-                         f"{FORMAT})")
+        raise InputError(f"{path}: not an ekm results file (ekm compare or tournament --out; its first line is "
+                         f"not the header of format {FORMAT})")
     records = []
     for n, line in enumerate(lines[1:], 2):
         try:
             entry = json.loads(line)
             records.append(entry["outcome"])
         except (json.JSONDecodeError, KeyError, TypeError):
-            raise InputError(f"{path}: line {n}: not a run of a comparison") from None
+            raise InputError(f"{path}: line {n}: not a finished run or game") from None
     return head["settings"], records, len(whole)
 
 
@@ -73,10 +74,11 @@ class ResultsFile:
 
     ``resume=False`` starts a new file (an existing one is refused: it holds someone's results);
     ``resume=True`` continues one made with the same ``settings`` (any other is refused with the first
-    setting that differs) and :attr:`done` holds the records it already has, by :func:`key`.
+    setting that differs) and :attr:`done` holds the records it already has, by ``key_of(record)`` (default
+    :func:`key` of a comparison's run).
     """
 
-    def __init__(self, path, settings: dict, *, resume: bool = False, option: str = "--out"):
+    def __init__(self, path, settings: dict, *, resume: bool = False, option: str = "--out", key_of=None):
         self.path = Path(path)
         self.settings = settings
         self.done: dict[tuple, dict] = {}
@@ -86,7 +88,11 @@ class ResultsFile:
             difference = _difference(old, settings)
             if difference:
                 raise InputError(f"--resume {self.path}: made with other settings ({difference})")
-            self.done = {key(r["given"], r["label"], r["trial"]): r for r in records}
+            key_of = key_of or (lambda r: key(r["given"], r["label"], r["trial"]))
+            try:
+                self.done = {key_of(r): r for r in records}
+            except (KeyError, TypeError, ValueError):
+                raise InputError(f"--resume {self.path}: its lines are not runs of this command") from None
             with open(self.path, "r+b") as f:  # drop a last line cut short by a crash
                 f.truncate(length)
             self._file = open(self.path, "a", encoding="utf-8")

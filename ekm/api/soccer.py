@@ -269,7 +269,7 @@ def _cross_rows(records, labels) -> list[dict]:
 
 def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.0, seeds: int = 10, seed: int = 0,
                rule: str | None = None, workers: int | None = None, scheduler: str | None = None, out=None,
-               progress: bool = False) -> TournamentResult:
+               resume=None, progress: bool = False) -> TournamentResult:
     """Play a round robin in parallel: every pair of ``players`` (and each player against itself) ``seeds`` times,
     and rank the players with 95 % intervals.
 
@@ -301,6 +301,9 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     out : path, optional
         Results file (JSON Lines, :mod:`evaluation.results`: a header with the settings, then one line
         ``{"job": …, "outcome": …}`` per game, appended and flushed as it finishes). Must not exist.
+    resume : path, optional
+        A results file of an interrupted tournament with the same settings, instead of ``out``: its games are
+        kept, the missing ones are played and appended, and the result is the uninterrupted tournament's.
     progress : bool, default False
         Show a progress bar (games done, failed, time left) on stderr.
 
@@ -313,10 +316,11 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     Raises
     ------
     ekm.InputError
-        Bad players, numbers, field file or rule, an existing ``out``, before any game starts.
+        Bad players, numbers, field file or rule, an existing ``out``, a ``resume`` file of other settings,
+        before any game starts.
     ekm.Interrupted
         On Ctrl-C or SIGTERM in the console script: the workers are stopped and the message says how many
-        games the results file keeps.
+        games the results file keeps and how to finish with ``resume``.
 
     Examples
     --------
@@ -328,7 +332,7 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     import time
 
     from evaluation.compare import compare as run_all
-    from evaluation.match import game_failed, play_job, standings, tournament_jobs
+    from evaluation.match import game_failed, game_key, job_key, play_job, standings, tournament_jobs
     from evaluation.results import ResultsFile
     from evaluation.workers import workers_for
     from robots.soccer.fieldfile import load_field
@@ -354,8 +358,10 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     soccer = load_field(field)
     spelling = _field_spelling(field, soccer)
     rule = _rule(rule, soccer, _TOURNAMENT)
+    if out is not None and resume is not None:
+        raise InputError("--out and --resume: give one (--resume PATH appends to PATH)")
     if out is not None and Path(out).exists():
-        raise InputError(f"--out {out}: exists; remove it or give another name (a results file is never overwritten)")
+        raise InputError(f"--out {out}: exists; continue it with --resume {out}, or remove it")
     job_list = tournament_jobs(specs, range(seed, seed + seeds), minutes, rule, spelling)
     settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)
         "tournament": [str(s) for s in specs], "labels": labels, "seeds": seeds, "seed": seed, "minutes": minutes,
@@ -364,14 +370,19 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     store = None
     t0 = time.perf_counter()
     try:
-        store = ResultsFile(out, settings, option="--out") if out is not None else None
-        with _Progress(len(job_list), progress) as bar:
+        store = ResultsFile(out, settings, option="--out") if out is not None else \
+            ResultsFile(resume, settings, resume=True, key_of=game_key) if resume is not None else None
+        done = {}
+        if store is not None:
+            index = {job_key(j): i for i, j in enumerate(job_list)}
+            done = {index[k]: r for k, r in store.done.items() if k in index}
+        with _Progress(len(job_list), done, progress) as bar:
             def on_done(i, record):
                 if store is not None:
                     store.append({**asdict(job_list[i]), "ekm_version": _version()}, record)
                 bar.update(record)
 
-            records = run_all(job_list, pool, on_done, failed=game_failed)
+            records = run_all(job_list, pool, on_done, done=done, failed=game_failed)
     except KeyboardInterrupt:
         try:
             pool.stop()
@@ -396,22 +407,24 @@ def _version() -> str:
 
 
 def _stopped(store, total: int) -> str:
-    """The line of an interrupted tournament: what was kept."""
+    """The line of an interrupted tournament: what was kept and how to go on."""
     if store is None:
         return "tournament stopped; no results file was written (--out RESULTS keeps every finished game)"
-    return f"tournament stopped; {store.appended} of {total} games are in {store.path}"
+    kept = len(store.done) + store.appended
+    return (f"tournament stopped; {kept} of {total} games are in {store.path}; "
+            f"run the same command with --resume {store.path} to finish it")
 
 
 class _Progress:
     """The progress bar of a tournament (games done, failed, time left), or nothing."""
 
-    def __init__(self, total: int, show: bool):
+    def __init__(self, total: int, done: dict, show: bool):
         self.bar = None
-        self.failed = 0
+        self.failed = sum("failed" in r for r in done.values())
         if show:
             from tqdm import tqdm
 
-            self.bar = tqdm(total=total, unit="game", desc="playing", dynamic_ncols=True)
+            self.bar = tqdm(total=total, initial=len(done), unit="game", desc="playing", dynamic_ncols=True)
 
     def update(self, record: dict) -> None:
         if self.bar is None:

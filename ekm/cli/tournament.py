@@ -32,6 +32,9 @@ def add_parser(sub) -> None:
                    help="send the games to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
     p.add_argument("--out", metavar="RESULTS.jsonl",
                    help="append every finished game to this results file as it arrives (JSON Lines; must not exist)")
+    p.add_argument("--resume", metavar="RESULTS.jsonl",
+                   help="finish the tournament of this results file (same players and settings): its games are kept, "
+                        "the missing ones played and appended")
     p.add_argument("--plot", metavar="PNG", help="each player's goal difference and win rate with their intervals")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
@@ -49,7 +52,7 @@ def run(args) -> None:
         pin_to_one_cpu()
     result = tournament(args.players, field=args.field, minutes=args.minutes, seeds=args.seeds, seed=args.seed,
                         rule=args.rule, workers=args.workers, scheduler=args.scheduler, out=args.out,
-                        progress=show_progress(args))
+                        resume=args.resume, progress=show_progress(args))
     if plot:
         result.save_plot(plot)
     if args.json:
@@ -65,7 +68,7 @@ def run(args) -> None:
           f"{result.seed + result.seeds - 1}, {result.minutes:g} min each, rule {result.rule}, field {result.field}) "
           f"in {result.seconds:.0f} s on {result.workers}"
           + (f"; {failed} failed (the reasons: --json, or the results file)" if failed else ""))
-    for path, what in ((args.out, "results"), (plot, "plot")):
+    for path, what in ((args.out or args.resume, "results"), (plot, "plot")):
         if path:
             print(f"{what} written to {path}")
 

@@ -69,9 +69,9 @@ def test_a_file_from_other_settings_is_refused_naming_the_first_difference(tmp_p
 
 
 @pytest.mark.parametrize("text, message", [
-    ("", "not an ekm compare results file"),
-    ('{"ekm_results": 2, "settings": {}}\n', "not an ekm compare results file"),
-    ('{"ekm_results": 1, "settings": {}}\n{"job": {}}\n', "line 2: not a run of a comparison"),
+    ("", "not an ekm results file"),
+    ('{"ekm_results": 2, "settings": {}}\n', "not an ekm results file"),
+    ('{"ekm_results": 1, "settings": {}}\n{"job": {}}\n', "line 2: not a finished run or game"),
 ])
 def test_what_is_not_a_results_file_is_refused_in_one_line(tmp_path, text, message):
     path = tmp_path / "r.jsonl"

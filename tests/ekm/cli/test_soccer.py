@@ -56,7 +56,9 @@ def test_a_field_file_sets_the_kick_off_and_the_rule(tmp_path):
     assert ekm.match("schema", "ekm", field=path, minutes=0.01, rule="centre").record.rule == "centre"
 
 
-def test_a_tournament_of_two_players_over_two_seeds_is_six_games(cli, tmp_path):
+def test_a_tournament_of_two_players_over_two_seeds_is_six_games_and_resumes_to_the_same(cli, tmp_path):
+    """Six games written to --out; the file cut after three games and half a line (a crash); --resume plays
+    the three missing games and gives the uninterrupted tournament's JSON."""
     results, plot = tmp_path / "cup.jsonl", tmp_path / "cup.png"
     code, out, err = cli(*TOURNAMENT, "--json", "--out", results, "--plot", plot)
     doc = json.loads(out)
@@ -77,6 +79,14 @@ def test_a_tournament_of_two_players_over_two_seeds_is_six_games(cli, tmp_path):
     assert len(lines) == 1 + 6 and json.loads(lines[0])["settings"]["labels"] == ["schema", "ekm"]
     assert sorted(json.loads(line)["outcome"]["seed"] for line in lines[1:]) == [0, 0, 0, 1, 1, 1]
     assert plot.read_bytes()[:4] == b"\x89PNG"
+    whole = results.read_text().splitlines(keepends=True)
+    results.write_text("".join(whole[:4]) + whole[4][:40])
+    code, out, _ = cli(*TOURNAMENT, "--json", "--resume", results)
+    again = json.loads(out)
+    assert code == 0 and len(results.read_text().splitlines()) == 1 + 6
+    for key in ("seconds", "workers"):
+        doc.pop(key), again.pop(key)
+    assert again == doc
 
 
 def test_the_tournament_table_is_sahota_s_table_5_then_the_standings(cli):
@@ -153,8 +163,13 @@ def test_a_bad_field_file_or_an_existing_results_file_is_refused_before_any_game
     results = tmp_path / "cup.jsonl"
     results.write_text("someone's results\n")
     code, out, err = cli("tournament", "schema,ekm", "--out", results)
-    assert code == 2 and err.count("\n") == 1 and f"--out {results}: exists; remove it" in err
+    assert code == 2 and err.count("\n") == 1 and f"--out {results}: exists; continue it with --resume" in err
     assert results.read_text() == "someone's results\n"
+    code, out, err = cli("tournament", "schema,ekm", "--resume", results)
+    assert code == 2 and err == (f"error: {results}: not an ekm results file (ekm compare or tournament --out; its "
+                                 f"first line is not the header of format 1)\n")
+    code, out, err = cli("tournament", "schema,ekm", "--resume", results, "--out", tmp_path / "new.jsonl")
+    assert code == 2 and err == "error: --out and --resume: give one (--resume PATH appends to PATH)\n"
 
 
 def test_ctrl_c_stops_a_match_and_a_tournament_in_one_line_keeping_the_finished_games(cli, monkeypatch, tmp_path):
@@ -178,7 +193,8 @@ def test_ctrl_c_stops_a_match_and_a_tournament_in_one_line_keeping_the_finished_
     monkeypatch.setattr(match, "play_job", second_stops)
     results = tmp_path / "cup.jsonl"
     code, out, err = cli(*TOURNAMENT, "--out", results)
-    assert code == 130 and err == f"interrupted: tournament stopped; 1 of 6 games are in {results}\n"
+    assert code == 130 and err == (f"interrupted: tournament stopped; 1 of 6 games are in {results}; run the same "
+                                   f"command with --resume {results} to finish it\n")
     assert [json.loads(line) for line in results.read_text().splitlines()][1]["outcome"]["failed"] == "not played"
 
 
