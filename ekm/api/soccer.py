@@ -11,7 +11,7 @@ itself too, once per seed, sent to workers as ``ekm compare`` sends its runs (:f
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ekm.api.checks import choice, number, whole
@@ -461,15 +461,8 @@ class Players(Result):
 def players() -> Players:
     """The soccer players :func:`match` and :func:`tournament` know (:mod:`robots.soccer.roster`), with their
     parameters, defaults and allowed values."""
-    from robots.controllers.spec import _show
+    from robots.controllers.spec import describe_fields
     from robots.soccer.roster import players as roster
 
-    rows = []
-    for name, player in roster().items():
-        params = []
-        for f in fields(player.params):
-            kind = f.type if isinstance(f.type, str) else f.type.__name__
-            params.append({"name": f.name, "type": kind, "default": _show(f.default),
-                           "choices": list(f.metadata.get("choices", ())) or None, "help": f.metadata.get("help", "")})
-        rows.append({"name": name, "summary": player.summary, "parameters": params})
-    return Players(rows=tuple(rows))
+    return Players(rows=tuple({"name": name, "summary": player.summary, "parameters": describe_fields(player.params)}
+                              for name, player in roster().items()))

@@ -173,16 +173,12 @@ class ArchitectureSpec:
     params: Any
 
     def __str__(self) -> str:
-        values = ",".join(f"{f.name}={_show(getattr(self.params, f.name))}" for f in fields(self.params))
-        return f"{self.name}:{values}" if values else self.name
+        return spell(self.name, self.params)
 
     @property
     def label(self) -> str:
         """Only the parameters that differ from the defaults (``fusion:beta=0.6``, or just ``fusion``)."""
-        default = registry()[self.name].params()
-        changed = [f"{f.name}={_show(getattr(self.params, f.name))}" for f in fields(self.params)
-                   if getattr(self.params, f.name) != getattr(default, f.name)]
-        return f"{self.name}:{','.join(changed)}" if changed else self.name
+        return spell(self.name, self.params, registry()[self.name].params())
 
     def with_params(self, **overrides) -> "ArchitectureSpec":
         """The same architecture with some parameters replaced (values already typed)."""
@@ -229,38 +225,58 @@ def _show(value) -> str:
         f"{value:g}" if isinstance(value, float) else str(value))
 
 
-def parse_architectures(text: str) -> list[ArchitectureSpec]:
-    """Read ``A1[:k=v,...],A2,...`` (see the module docstring); raises :class:`InputError` on any fault."""
+def spell(name: str, params, default=None) -> str:
+    """``name:k=v,…`` with every parameter of ``params`` — or, given the ``default`` parameters, only those
+    that differ from them (just ``name`` if none does): how the command line spells a named thing."""
+    values = [f"{f.name}={_show(getattr(params, f.name))}" for f in fields(params)
+              if default is None or getattr(params, f.name) != getattr(default, f.name)]
+    return f"{name}:{','.join(values)}" if values else name
+
+
+def parse_named(text: str, what: str, names, make) -> list:
+    """Read ``N1[:k=v,...],N2,...`` — a ``k=v`` after a comma continues the item before it — into
+    ``make(name, {k: v})`` for each item; ``what`` ("architecture", "player") names the kind in every error and
+    ``names`` are the known ones, for the error of an empty text. Raises :class:`InputError` on any fault."""
     if not text or not text.strip():
-        raise InputError("architecture: empty (choose from " + ", ".join(registry()) + ")")
+        raise InputError(f"{what}: empty (choose from " + ", ".join(names) + ")")
     groups: list[tuple[str, list[str]]] = []
     for token in (t.strip() for t in text.split(",")):
         if not token:
-            raise InputError(f"architecture {text!r}: empty item between commas")
+            raise InputError(f"{what} {text!r}: empty item between commas")
         head, sep, rest = token.partition(":")
         if sep or "=" not in token:
-            groups.append((head.strip(), [rest.strip()] if rest.strip() else []))
             if sep and not rest.strip():
-                raise InputError(f"architecture {token!r}: nothing after ':' (expected k=v)")
+                raise InputError(f"{what} {token!r}: nothing after ':' (expected k=v)")
+            groups.append((head.strip(), [rest.strip()] if rest.strip() else []))
         elif groups:
             groups[-1][1].append(token)
         else:
-            raise InputError(f"architecture {text!r}: parameter {token!r} before any architecture name")
-    return [make_spec(name, dict(_pair(name, kv) for kv in kvs)) for name, kvs in groups]
+            raise InputError(f"{what} {text!r}: parameter {token!r} before any {what} name")
+    return [make(name, dict(_pair(what, name, kv) for kv in kvs)) for name, kvs in groups]
+
+
+def parse_one(text: str, what: str, parse):
+    """Exactly one item of ``parse(text)`` (``ekm run --architecture``, ``ekm match A B``)."""
+    items = parse(text)
+    if len(items) != 1:
+        raise InputError(f"{what} {text!r}: expected one {what}, got {len(items)}")
+    return items[0]
+
+
+def parse_architectures(text: str) -> list[ArchitectureSpec]:
+    """Read ``A1[:k=v,...],A2,...`` (see the module docstring); raises :class:`InputError` on any fault."""
+    return parse_named(text, "architecture", registry(), make_spec)
 
 
 def parse_architecture(text: str) -> ArchitectureSpec:
     """Exactly one architecture (``ekm run``)."""
-    specs = parse_architectures(text)
-    if len(specs) != 1:
-        raise InputError(f"architecture {text!r}: expected one architecture, got {len(specs)}")
-    return specs[0]
+    return parse_one(text, "architecture", parse_architectures)
 
 
-def _pair(name: str, kv: str) -> tuple[str, str]:
+def _pair(what: str, name: str, kv: str) -> tuple[str, str]:
     key, sep, value = kv.partition("=")
     if not sep or not key.strip() or not value.strip():
-        raise InputError(f"architecture {name}: {kv!r} is not k=v")
+        raise InputError(f"{what} {name}: {kv!r} is not k=v")
     return key.strip(), value.strip()
 
 
@@ -270,19 +286,22 @@ def make_spec(name: str, values: dict[str, str]) -> ArchitectureSpec:
     if name not in known_architectures:
         raise InputError(f"architecture {name!r}: unknown (choose from {', '.join(known_architectures)}; "
                          f"ekm architectures describes them)")
-    cls = known_architectures[name].params
+    return ArchitectureSpec(name, typed_params("architecture", name, known_architectures[name].params, values))
+
+
+def typed_params(what: str, name: str, cls, values: dict[str, str]):
+    """``cls(**values)`` with each text value read as its field's type (float, int, bool, one of its choices);
+    an unknown parameter, a bad value or one ``cls`` refuses is one :class:`InputError` line naming it."""
     known = {f.name: f for f in fields(cls)}
     typed = {}
     for key, text in values.items():
-        if key in typed:
-            raise InputError(f"architecture {name}: parameter {key!r} given twice")
         if key not in known:
-            raise InputError(f"architecture {name}: unknown parameter {key!r} (known: {', '.join(known)})")
-        typed[key] = _typed(name, known[key], text)
+            raise InputError(f"{what} {name}: unknown parameter {key!r} (known: {', '.join(known)})")
+        typed[key] = _typed(name, known[key], text, what)
     try:
-        return ArchitectureSpec(name, cls(**typed))
+        return cls(**typed)
     except ValueError as exc:
-        raise InputError(f"architecture {name}: {exc}") from None
+        raise InputError(f"{what} {name}: {exc}") from None
 
 
 def _typed(name: str, f, text: str, what: str = "architecture"):
@@ -317,8 +336,13 @@ def _typed(name: str, f, text: str, what: str = "architecture"):
 
 def describe_parameters(name: str) -> list[dict]:
     """Every parameter of ``name`` as ``{name, type, default, choices, help}`` (``ekm architectures``, docs)."""
+    return describe_fields(registry()[name].params)
+
+
+def describe_fields(cls) -> list[dict]:
+    """Every field of the parameter dataclass ``cls`` as ``{name, type, default, choices, help}``."""
     out = []
-    for f in fields(registry()[name].params):
+    for f in fields(cls):
         kind = f.type if isinstance(f.type, str) else f.type.__name__
         out.append({"name": f.name, "type": kind, "default": _show(f.default),
                     "choices": list(f.metadata.get("choices", ())) or None, "help": f.metadata.get("help", "")})

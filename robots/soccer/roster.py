@@ -10,11 +10,11 @@ line spells players as ``ekm compare`` spells architectures (:func:`robots.contr
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 from ekm.errors import InputError
-from robots.controllers.spec import _pair, _show, _typed
+from robots.controllers.spec import parse_named, parse_one, spell, typed_params
 
 
 @dataclass(frozen=True)
@@ -69,16 +69,12 @@ class PlayerSpec:
     params: Any
 
     def __str__(self) -> str:
-        values = ",".join(f"{f.name}={_show(getattr(self.params, f.name))}" for f in fields(self.params))
-        return f"{self.name}:{values}" if values else self.name
+        return spell(self.name, self.params)
 
     @property
     def label(self) -> str:
         """Only the parameters that differ from the defaults (``deliberation:level=half``, or just ``samba``)."""
-        default = players()[self.name].params()
-        changed = [f"{f.name}={_show(getattr(self.params, f.name))}" for f in fields(self.params)
-                   if getattr(self.params, f.name) != getattr(default, f.name)]
-        return f"{self.name}:{','.join(changed)}" if changed else self.name
+        return spell(self.name, self.params, players()[self.name].params())
 
     def with_params(self, **overrides) -> "PlayerSpec":
         return PlayerSpec(self.name, replace(self.params, **overrides))
@@ -97,30 +93,12 @@ def _built(spec: PlayerSpec, field, robot):
 
 def parse_players(text: str) -> list[PlayerSpec]:
     """Read ``P1[:k=v,...],P2,...``; raises :class:`InputError` on any fault (module docstring)."""
-    if not text or not text.strip():
-        raise InputError("player: empty (choose from " + ", ".join(players()) + ")")
-    groups: list[tuple[str, list[str]]] = []
-    for token in (t.strip() for t in text.split(",")):
-        if not token:
-            raise InputError(f"player {text!r}: empty item between commas")
-        head, sep, rest = token.partition(":")
-        if sep or "=" not in token:
-            if sep and not rest.strip():
-                raise InputError(f"player {token!r}: nothing after ':' (expected k=v)")
-            groups.append((head.strip(), [rest.strip()] if rest.strip() else []))
-        elif groups:
-            groups[-1][1].append(token)
-        else:
-            raise InputError(f"player {text!r}: parameter {token!r} before any player name")
-    return [make_player(name, dict(_pair(name, kv) for kv in kvs)) for name, kvs in groups]
+    return parse_named(text, "player", players(), make_player)
 
 
 def parse_player(text: str) -> PlayerSpec:
     """Exactly one player (``ekm match A B``)."""
-    specs = parse_players(text)
-    if len(specs) != 1:
-        raise InputError(f"player {text!r}: expected one player, got {len(specs)}")
-    return specs[0]
+    return parse_one(text, "player", parse_players)
 
 
 def make_player(name: str, values: dict[str, str]) -> PlayerSpec:
@@ -129,14 +107,4 @@ def make_player(name: str, values: dict[str, str]) -> PlayerSpec:
     if name not in known_players:
         raise InputError(f"player {name!r}: unknown (choose from {', '.join(known_players)}; ekm players describes "
                          f"them)")
-    cls = known_players[name].params
-    known = {f.name: f for f in fields(cls)}
-    typed = {}
-    for key, text in values.items():
-        if key not in known:
-            raise InputError(f"player {name}: unknown parameter {key!r} (known: {', '.join(known)})")
-        typed[key] = _typed(name, known[key], text, "player")
-    try:
-        return PlayerSpec(name, cls(**typed))
-    except ValueError as exc:
-        raise InputError(f"player {name}: {exc}") from None
+    return PlayerSpec(name, typed_params("player", name, known_players[name].params, values))
