@@ -21,20 +21,29 @@ def add_parser(sub) -> None:
 def run(args) -> None:
     """Print the architectures (or the JSON of :func:`ekm.architectures`)."""
     from ekm.api.architectures import architectures
-    from ekm.errors import InputError
 
-    table = architectures()
-    unknown = [n for n in args.names if n not in table.names()]
-    if unknown:
-        raise InputError(f"architecture {unknown[0]!r}: unknown (choose from {', '.join(table.names())})")
-    rows = [r for r in table.rows if not args.names or r["name"] in args.names]
-    if args.json:
-        print_json({"architectures": rows})
-        return
-    for i, r in enumerate(rows):
+    def title(r: dict) -> str:
         drives = f"drives a {' or '.join(r['map'])}-chart EKM" if r["map"] else "drives no EKM"
         encodes = f"; {r['encoding']} responses" if r["encoding"] else ""
-        print(("\n" if i else "") + f"{r['name']} ({r['origin']}; {drives}{encodes})")
+        return f"{r['name']} ({r['origin']}; {drives}{encodes})"
+
+    print_catalogue(architectures(), args, "architecture", "architectures", title)
+
+
+def print_catalogue(table, args, what: str, key: str, title) -> None:
+    """Print the rows of ``table`` named in ``args.names`` (all if none; an unknown one is an InputError) — each
+    its ``title(row)``, summary and parameters with defaults and allowed values — or ``{key: rows}`` as JSON."""
+    from ekm.errors import InputError
+
+    unknown = [n for n in args.names if n not in table.names()]
+    if unknown:
+        raise InputError(f"{what} {unknown[0]!r}: unknown (choose from {', '.join(table.names())})")
+    rows = [r for r in table.rows if not args.names or r["name"] in args.names]
+    if args.json:
+        print_json({key: rows})
+        return
+    for i, r in enumerate(rows):
+        print(("\n" if i else "") + title(r))
         print(textwrap.fill(r["summary"], 100, initial_indent="  ", subsequent_indent="  "))
         width = max((len(p["name"]) for p in r["parameters"]), default=0)
         for p in r["parameters"]:

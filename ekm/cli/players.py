@@ -3,9 +3,7 @@ parameters (:func:`ekm.players`)."""
 
 from __future__ import annotations
 
-import textwrap
-
-from ekm.cli.args import command, print_json
+from ekm.cli.args import command
 
 
 def add_parser(sub) -> None:
@@ -21,21 +19,6 @@ def add_parser(sub) -> None:
 def run(args) -> None:
     """Print the players (or the JSON of :func:`ekm.players`)."""
     from ekm.api.soccer import players
-    from ekm.errors import InputError
+    from ekm.cli.architectures import print_catalogue
 
-    table = players()
-    unknown = [n for n in args.names if n not in table.names()]
-    if unknown:
-        raise InputError(f"player {unknown[0]!r}: unknown (choose from {', '.join(table.names())})")
-    rows = [r for r in table.rows if not args.names or r["name"] in args.names]
-    if args.json:
-        print_json({"players": rows})
-        return
-    for i, r in enumerate(rows):
-        print(("\n" if i else "") + r["name"])
-        print(textwrap.fill(r["summary"], 100, initial_indent="  ", subsequent_indent="  "))
-        width = max((len(p["name"]) for p in r["parameters"]), default=0)
-        for p in r["parameters"]:
-            allowed = f" [{'|'.join(p['choices'])}]" if p["choices"] else f" ({p['type']})"
-            head = f"    {p['name']:<{width}} = {p['default']}{allowed}"
-            print(head + (f"  {p['help']}" if p["help"] else ""))
+    print_catalogue(players(), args, "player", "players", lambda r: r["name"])
