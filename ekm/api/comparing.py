@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ekm.api.checks import whole
 from ekm.api.result import Result
-from ekm.errors import InputError, Interrupted
+from ekm.errors import InputError
 
 _PROG = "ekm compare"
 
@@ -186,7 +186,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
 
     from ekm.api.worlds import world as load_world
     from ekm.api.driving import scenario_config
-    from evaluation.compare import by_architecture, by_family, compare as run_all, jobs, run_job, summarize
+    from ekm.api.batch import Batch, run_batch
+    from evaluation.compare import by_architecture, by_family, jobs, run_job, summarize
     from evaluation.results import key
     from evaluation.workers import workers_for
     from robots.controllers.spec import parse_architectures
@@ -215,31 +216,10 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
         "worlds": names, "architectures": [str(s) for s in specs], "labels": labels, "trials": trials, "seed": seed,
         "config": asdict(config), "map": map_path, "ekm_version": _version()}))
     pool = workers_for(run_job, workers, scheduler)
-    store = None
+    batch = Batch("comparison", "run", "comparing", job_key=lambda j: key(j.world, j.label, j.trial),
+                  identity=lambda j: _identity(j, map_path))
     t0 = time.perf_counter()
-    try:
-        store = _results_file(out, resume, settings)
-        done = {}
-        if store is not None:
-            index = {key(j.world, j.label, j.trial): i for i, j in enumerate(job_list)}
-            done = {index[k]: r for k, r in store.done.items() if k in index}
-        with _Progress(len(job_list), done, progress) as bar:
-            def on_done(i, record):
-                if store is not None:
-                    store.append(_identity(job_list[i], map_path), record)
-                bar.update(record)
-
-            records = run_all(job_list, pool, on_done, done=done)
-    except KeyboardInterrupt:
-        try:
-            pool.stop()
-        except KeyboardInterrupt:  # a second Ctrl-C while the workers stop: they are stopping
-            pass
-        raise Interrupted(_stopped(store, len(job_list))) from None
-    finally:
-        if store is not None:
-            store.close()
-        pool.close()
+    records = run_batch(batch, job_list, pool, settings, out=out, resume=resume, progress=progress)
     seconds = time.perf_counter() - t0
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
                  trials=trials, seed=seed, seconds=seconds, workers=pool.where, config=config,
@@ -285,57 +265,6 @@ def _identity(job, map_path) -> dict:
     """A run's job as the results file names it."""
     return {"world": job.world, "architecture": job.architecture, "label": job.label, "trial": job.trial,
             "seed": job.seed, "map": map_path, "ekm_version": _version()}
-
-
-def _results_file(out, resume, settings):
-    """The results file the runs go to (``out``: new; ``resume``: an earlier one continued), or None."""
-    from evaluation.results import ResultsFile
-
-    if out is not None and resume is not None:
-        raise InputError("--out and --resume: give one (--resume PATH appends to PATH)")
-    if out is not None:
-        return ResultsFile(out, settings, option="--out")
-    if resume is not None:
-        return ResultsFile(resume, settings, resume=True)
-    return None
-
-
-def _stopped(store, total: int) -> str:
-    """The line of an interrupted comparison: what was kept and how to go on."""
-    if store is None:
-        return "comparison stopped; no results file was written (--out RESULTS keeps every finished run)"
-    kept = len(store.done) + store.appended
-    return (f"comparison stopped; {kept} of {total} runs are in {store.path}; "
-            f"run the same command with --resume {store.path} to finish it")
-
-
-class _Progress:
-    """The progress bar of a comparison (runs done, failed, time left), or nothing."""
-
-    def __init__(self, total: int, done: dict, show: bool):
-        self.bar = None
-        self.failed = sum("failed" in r for r in done.values())
-        if show:
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=total, initial=len(done), unit="run", desc="comparing", dynamic_ncols=True)
-            if self.failed:
-                self.bar.set_postfix(failed=self.failed)
-
-    def update(self, record: dict) -> None:
-        if self.bar is None:
-            return
-        if "failed" in record:
-            self.failed += 1
-            self.bar.set_postfix(failed=self.failed, refresh=False)
-        self.bar.update(1)
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.close()
 
 
 def _map_path(maps, specs) -> str | None:

@@ -331,9 +331,8 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     """
     import time
 
-    from evaluation.compare import compare as run_all
+    from ekm.api.batch import Batch, run_batch
     from evaluation.match import game_failed, game_key, job_key, play_job, standings, tournament_jobs
-    from evaluation.results import ResultsFile
     from evaluation.workers import workers_for
     from robots.soccer.fieldfile import load_field
     from robots.soccer.roster import parse_players
@@ -358,41 +357,16 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     soccer = load_field(field)
     spelling = _field_spelling(field, soccer)
     rule = _rule(rule, soccer, _TOURNAMENT)
-    if out is not None and resume is not None:
-        raise InputError("--out and --resume: give one (--resume PATH appends to PATH)")
-    if out is not None and Path(out).exists():
-        raise InputError(f"--out {out}: exists; continue it with --resume {out}, or remove it")
     job_list = tournament_jobs(specs, range(seed, seed + seeds), minutes, rule, spelling)
     settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)
         "tournament": [str(s) for s in specs], "labels": labels, "seeds": seeds, "seed": seed, "minutes": minutes,
         "rule": rule, "field": spelling, "ekm_version": _version()}))
     pool = workers_for(play_job, workers, scheduler)
-    store = None
+    batch = Batch("tournament", "game", "playing", job_key=job_key, record_key=game_key,
+                  identity=lambda j: {**asdict(j), "ekm_version": _version()})
     t0 = time.perf_counter()
-    try:
-        store = ResultsFile(out, settings, option="--out") if out is not None else \
-            ResultsFile(resume, settings, resume=True, key_of=game_key) if resume is not None else None
-        done = {}
-        if store is not None:
-            index = {job_key(j): i for i, j in enumerate(job_list)}
-            done = {index[k]: r for k, r in store.done.items() if k in index}
-        with _Progress(len(job_list), done, progress) as bar:
-            def on_done(i, record):
-                if store is not None:
-                    store.append({**asdict(job_list[i]), "ekm_version": _version()}, record)
-                bar.update(record)
-
-            records = run_all(job_list, pool, on_done, done=done, failed=game_failed)
-    except KeyboardInterrupt:
-        try:
-            pool.stop()
-        except KeyboardInterrupt:  # a second Ctrl-C while the workers stop: they are stopping
-            pass
-        raise Interrupted(_stopped(store, len(job_list))) from None
-    finally:
-        if store is not None:
-            store.close()
-        pool.close()
+    records = run_batch(batch, job_list, pool, settings, out=out, resume=resume, progress=progress,
+                        failed=game_failed)
     seconds = time.perf_counter() - t0
     return TournamentResult(labels=tuple(labels), specs=tuple(str(s) for s in specs), records=tuple(records),
                             standings=tuple(standings(records, labels)), cross_table=tuple(_cross_rows(records, labels)),
@@ -404,42 +378,6 @@ def _version() -> str:
     from ekm import __version__
 
     return __version__
-
-
-def _stopped(store, total: int) -> str:
-    """The line of an interrupted tournament: what was kept and how to go on."""
-    if store is None:
-        return "tournament stopped; no results file was written (--out RESULTS keeps every finished game)"
-    kept = len(store.done) + store.appended
-    return (f"tournament stopped; {kept} of {total} games are in {store.path}; "
-            f"run the same command with --resume {store.path} to finish it")
-
-
-class _Progress:
-    """The progress bar of a tournament (games done, failed, time left), or nothing."""
-
-    def __init__(self, total: int, done: dict, show: bool):
-        self.bar = None
-        self.failed = sum("failed" in r for r in done.values())
-        if show:
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=total, initial=len(done), unit="game", desc="playing", dynamic_ncols=True)
-
-    def update(self, record: dict) -> None:
-        if self.bar is None:
-            return
-        if "failed" in record:
-            self.failed += 1
-            self.bar.set_postfix(failed=self.failed, refresh=False)
-        self.bar.update(1)
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.close()
 
 
 # ------------------------------------------------------------------------------------------------- the players
