@@ -252,7 +252,15 @@ def parse_named(text: str, what: str, names, make) -> list:
             groups[-1][1].append(token)
         else:
             raise InputError(f"{what} {text!r}: parameter {token!r} before any {what} name")
-    return [make(name, dict(_pair(what, name, kv) for kv in kvs)) for name, kvs in groups]
+    items = []
+    for name, kvs in groups:
+        values: dict[str, str] = {}
+        for key, value in (_pair(what, name, kv) for kv in kvs):
+            if key in values:
+                raise InputError(f"{what} {name}: parameter {key!r} given twice")
+            values[key] = value
+        items.append(make(name, values))
+    return items
 
 
 def parse_one(text: str, what: str, parse):

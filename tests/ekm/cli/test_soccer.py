@@ -140,6 +140,7 @@ def no_games(monkeypatch):
     (["match", "schema", "ekm", "--gif", "m.png"], "--gif m.png: expected a file name ending in .gif"),
     (["tournament", "schema,striker"], "player 'striker': unknown"),
     (["tournament", "schema,,ekm"], "player 'schema,,ekm': empty item between commas"),
+    (["match", "deliberation:level=half,level=none", "ekm"], "player deliberation: parameter 'level' given twice"),
     (["tournament", "schema"], "players 'schema': a tournament needs at least two players"),
     (["tournament", "schema,ekm,schema"], "players 'schema,ekm,schema': player 'schema' is named twice"),
     (["tournament", "schema,ekm", "--seeds", "0"], "argument --seeds: must be > 0, got 0"),

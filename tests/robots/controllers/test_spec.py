@@ -24,6 +24,7 @@ def test_architecture_specs_parse_parameters_and_spell_them_all():
     ("fusion:sensors=mid", "architecture fusion: sensors: must be one of short, long, got 'mid'"),
     ("fields:commit=maybe", "architecture fields: commit: must be true or false, got 'maybe'"),
     ("fusion:beta", "architecture fusion: 'beta' is not k=v"),
+    ("fusion:beta=0.5,beta=0.6", "architecture fusion: parameter 'beta' given twice"),
     ("beta=1", "parameter 'beta=1' before any architecture name"),
     ("fusion,,fields", "empty item between commas"),
     ("", "architecture: empty"),
