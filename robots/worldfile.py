@@ -494,18 +494,29 @@ def load_world(name_or_path: str | Path) -> World:
             names = ", ".join(named_worlds())
             raise InputError(f"{text_source}: no such world file or named world (named worlds: {names}; "
                              f"or a generated world, FAMILY:SEED[:DIFFICULTY])")
-        try:
-            text = path.read_text()
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"{text_source}: cannot read world file ({exc.__class__.__name__}: {exc})") from None
+        text = read_text(path, text_source, "world")
         source = text_source
+    return parse_world(decode(text, source), source)
+
+
+def read_text(path: Path, source: str, what: str) -> str:
+    """The text of the ``what`` file (world, field) at ``path``; one that cannot be read is one
+    :class:`InputError` line naming ``source``."""
     try:
-        doc = json.loads(text, object_pairs_hook=_unique_keys)
+        return path.read_text()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{source}: cannot read {what} file ({exc.__class__.__name__}: {exc})") from None
+
+
+def decode(text: str, source: str):
+    """The JSON document of ``text``; not JSON, or an object with a key given twice, is one :class:`InputError`
+    line naming ``source`` (JSON itself would silently keep the last of two keys)."""
+    try:
+        return json.loads(text, object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as exc:
         raise InputError(f"{source}: not valid JSON ({exc.msg} at line {exc.lineno} column {exc.colno})") from None
     except _DuplicateKey as exc:
         raise InputError(f"{source}: {exc.args[0]}: given twice (JSON would silently keep the last)") from None
-    return parse_world(doc, source)
 
 
 class _DuplicateKey(ValueError):

@@ -42,7 +42,7 @@ from robots.params import KHEPERA
 from robots.soccer.ball import BallParams
 from robots.soccer.field import Field
 from robots.soccer.referee import RULES
-from robots.worldfile import _Checker, _DuplicateKey, _join, _unique_keys
+from robots.worldfile import _Checker, _join, decode, read_text
 
 __all__ = ["SoccerField", "field_document", "field_json", "load_field", "named_fields", "parse_field", "save_field"]
 
@@ -200,16 +200,8 @@ def load_field(name_or_path) -> SoccerField:
         if not path.is_file():
             raise InputError(f"{text_source}: no such field file or named field (named fields: "
                              f"{', '.join(named_fields())})")
-        try:
-            text = path.read_text()
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"{text_source}: cannot read field file ({exc.__class__.__name__}: {exc})") from None
-    try:
-        doc = json.loads(text, object_pairs_hook=_unique_keys)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"{text_source}: not valid JSON ({exc.msg} at line {exc.lineno} column {exc.colno})") from None
-    except _DuplicateKey as exc:
-        raise InputError(f"{text_source}: {exc.args[0]}: given twice (JSON would silently keep the last)") from None
+        text = read_text(path, text_source, "field")
+    doc = decode(text, text_source)
     stem = path.name[:-5] if path.name.endswith(".json") else path.name
     return parse_field(doc, text_source, name=stem)
 
