@@ -15,9 +15,12 @@ function                               returns                     command line
 ``resume(checkpoint)``                 :class:`Maps`               ``ekm train --resume``
 ``load(path=None)``, ``Maps.save``     :class:`Maps`               (map files)
 ``evaluate(maps, targets=, seed=)``    :class:`Metrics`            ``ekm evaluate``
+``adapt(robots, maps=, steps=)``       :class:`AdaptationTable`    ``ekm adapt``
 ``world(name_or_path)``                ``World``                   (world files)
 ``worlds(check=None)``                 :class:`Worlds`             ``ekm worlds``
 ``generate(family, seed, ...)``        ``World``                   ``ekm worlds --generate``
+``robot(name_or_path)``                ``RobotParams``             (robot files)
+``robots(check=None)``                 :class:`Robots`             ``ekm robots``
 ``plan(world, start, goal, ...)``      :class:`Plan`               ``ekm plan``
 ``run(world, architecture, ...)``      :class:`Outcome`            ``ekm run``
 ``compare(worlds, architectures)``     :class:`Table`              ``ekm compare``
@@ -44,9 +47,11 @@ _EXPORTS = {
     "load": "ekm.api.mapset", "Maps": "ekm.api.mapset", "Map": "ekm.api.mapset",
     "evaluate": "ekm.api.evaluation", "Metrics": "ekm.api.evaluation", "Evaluation": "ekm.api.evaluation",
     "world": "ekm.api.worlds", "worlds": "ekm.api.worlds", "Worlds": "ekm.api.worlds",
+    "robot": "ekm.api.robots", "robots": "ekm.api.robots", "Robots": "ekm.api.robots",
     "generate": "ekm.api.worlds",
     "plan": "ekm.api.planning", "Plan": "ekm.api.planning",
     "run": "ekm.api.driving", "Outcome": "ekm.api.driving",
+    "adapt": "ekm.api.adapting", "AdaptationTable": "ekm.api.adapting",
     "compare": "ekm.api.comparing", "Table": "ekm.api.comparing", "load_comparison": "ekm.api.comparing",
     "architectures": "ekm.api.architectures", "Architectures": "ekm.api.architectures",
     "register_architecture": "ekm.api.architectures", "Architecture": "ekm.api.architectures",

@@ -41,6 +41,10 @@ def update(ekm: DirectEKM, v, c_p, eta, sigma, cfg: EKMConfig) -> DirectEKM:
     """Self-organising step (ch. 4.3 with direct outputs): k = winner for v, Eq. 4.7 for w_i and
     Δc_i = η G(k,i)(c_p - c_i)."""
     k = winner(ekm.w, v, cfg)
-    g = neighbourhood(cfg, k, sigma)
+    return learn(ekm, v, c_p, eta, neighbourhood(cfg, k, sigma), cfg)
+
+
+def learn(ekm: DirectEKM, v, c_p, eta, g, cfg: EKMConfig) -> DirectEKM:
+    """The update for neighbourhood weights ``g`` ``(N²,)``: Eq. 4.7 for w_i and Δc_i = η g_i (c_p - c_i)."""
     c = ekm.c + (eta * g)[:, None] * (c_p[None, :] - ekm.c)
     return DirectEKM(w=update_inputs(ekm.w, v, g, eta, cfg), c=c)

@@ -2,7 +2,7 @@
 
     import gymnasium
     import ekm.gym                                   # registers ekm/Khepera-v0
-    env = gymnasium.make("ekm/Khepera-v0", world="three-rooms", sensors="long")
+    env = gymnasium.make("ekm/Khepera-v0", world="three-rooms", sensors="long", robot="khepera")
     obs, info = env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
 
@@ -14,7 +14,8 @@ ends as ``ekm run --seed`` does.
 - **Observation** ``(m + 2,)`` float32: the ``m`` IR readings (m from the body surface; the sensor's range
   where nothing is seen), then the current checkpoint as (α, d) — bearing from the heading (rad, + = left)
   and distance (m). ``info["observation"]`` holds the full :class:`~robots.controllers.base.Observation`.
-- **Action** ``(2,)``: the left and right wheel speeds in m/s, within ±c* (0.16).
+- **Action** ``(2,)``: the left and right wheel speeds in m/s, within ±c* (the robot's top speed: 0.16 for the
+  Khepera).
 - **Reward** per step: ``10 ×`` the metres of progress along the plan (the route still to go: to the
   current checkpoint, then leg by leg to the goal), ``− 1`` per new collision (contact episode), ``− 0.01``
   (time), and ``+ 10`` on reaching the goal without a collision.
@@ -48,16 +49,18 @@ class _Body:
 class KheperaEnv(gymnasium.Env):
     """The robot in one world (module docstring). ``world``: a named world, a world file or ``FAMILY:SEED``;
     ``sensors``: ``"long"`` (12 IR, 17.5 cm) or ``"short"`` (8, 5 cm); ``time_limit`` (simulated s),
-    ``checkpoints`` (``"visible"`` or ``"thesis"``), ``recover`` and ``cell`` as for ``ekm run``."""
+    ``checkpoints`` (``"visible"`` or ``"thesis"``), ``recover`` and ``cell`` as for ``ekm run``; ``robot``: a
+    named robot or a robot file (default the Khepera; ``ekm robots``)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": round(1 / KHEPERA.avoid_period)}
 
     def __init__(self, world: str = "three-rooms", sensors: str = "long", time_limit: float = 120.0,
                  checkpoints: str = "visible", recover: bool = True, cell: float | None = None,
-                 render_mode: str | None = None):
+                 render_mode: str | None = None, robot=None):
         from ekm.api.driving import scenario_config
         from ekm.api.worlds import world as load_world
         from ekm.errors import InputError
+        from robots.robotfile import load_robot
 
         if sensors not in ("long", "short"):
             raise InputError(f"sensors: must be long or short, got {sensors!r}")
@@ -66,7 +69,8 @@ class KheperaEnv(gymnasium.Env):
         self.world = load_world(world)
         self.config = scenario_config("ekm.gym", time_limit=time_limit, recover=recover, checkpoints=checkpoints,
                                       cell=cell)
-        self.body = _Body(KHEPERA.long_range if sensors == "long" else KHEPERA.short_range, KHEPERA)
+        self.robot = load_robot(robot)
+        self.body = _Body(self.robot.long_range if sensors == "long" else self.robot.short_range, self.robot)
         self.render_mode = render_mode
         m = len(self.body.sensors.angles)
         self.range_m = self.body.sensors.range_m
@@ -74,7 +78,7 @@ class KheperaEnv(gymnasium.Env):
         self.observation_space = spaces.Box(
             low=np.array([0.0] * m + [-math.pi, 0.0], np.float32),
             high=np.array([self.range_m] * m + [math.pi, far], np.float32), dtype=np.float32)
-        c = KHEPERA.max_wheel_speed
+        c = self.robot.max_wheel_speed
         self.action_space = spaces.Box(low=-c, high=c, shape=(2,), dtype=np.float32)
         self._ticks, self._raw, self._trace = None, None, []
         self._done = True
@@ -144,7 +148,7 @@ class KheperaEnv(gymnasium.Env):
         ax.plot(trace[:, 0], trace[:, 1], "-", color="tab:blue", lw=1.5)
         if self._raw is not None:
             x, y, th = (float(v) for v in self._raw.pose)
-            r = KHEPERA.radius
+            r = self.robot.radius
             ax.add_patch(Circle((x, y), r, fc="0.8", ec="k", zorder=6))
             ax.plot([x, x + r * math.cos(th)], [y, y + r * math.sin(th)], "k-", lw=1.5)
         canvas = FigureCanvasAgg(fig)

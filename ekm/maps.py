@@ -35,3 +35,8 @@ def control(ekm: EKM, u, cfg: EKMConfig):
 def update(ekm: EKM, v, c_p, eta, sigma, cfg: EKMConfig) -> EKM:
     """One online learning step from executed command ``c_p`` and displacement ``v`` (ch. 4.3)."""
     return module_of(ekm).update(ekm, v, c_p, eta, sigma, cfg)
+
+
+def learn(ekm: EKM, v, c_p, eta, g, cfg: EKMConfig) -> EKM:
+    """:func:`update` for given neighbourhood weights ``g`` ``(N²,)`` (the winner already chosen)."""
+    return module_of(ekm).learn(ekm, v, c_p, eta, g, cfg)

@@ -38,6 +38,8 @@ class Job:
     map_path: str | None = None
     keep_path: bool = False
     added: object = None  # an architecture added in Python (robots.controllers.spec.register): the worker adds it too
+    robot: str | None = None  # the robot's file as JSON text (robots.robotfile), None for the Khepera
+    learn: str | None = None  # the learning rule of the maps that drive (robots.controllers.learner), None: frozen
 
 
 _MAPS: dict = {}
@@ -81,7 +83,13 @@ def run_job(job: Job) -> dict:
             maps = _MAPS[job.map_path]
         world = _world(job.world)
         family = world_family(world)
-        rec = run_architecture(world, spec, maps, seed=job.seed, config=job.config, source=job.map_path or "")
+        learn = None
+        if job.learn is not None and spec.uses_map:
+            from robots.controllers.learner import parse_learning
+
+            learn = parse_learning(job.learn)
+        rec = run_architecture(world, spec, maps, seed=job.seed, config=job.config, source=job.map_path or "",
+                               robot=_robot(job.robot), learn=learn)
     except Exception as exc:
         text = str(exc).splitlines()[0] if str(exc) else ""
         reason = text if isinstance(exc, InputError) else f"{type(exc).__name__}: {text}".rstrip(": ")
@@ -103,6 +111,18 @@ def _world(spelling: str):
     return load_world(spelling)
 
 
+@functools.lru_cache(maxsize=16)
+def _robot(document: str | None):
+    """The robot of a job (None: the Khepera), read once per worker process."""
+    if document is None:
+        return None
+    import json
+
+    from robots.robotfile import parse_robot
+
+    return parse_robot(json.loads(document), "job robot")
+
+
 def world_family(world) -> str | None:
     """The family of a generated world (its ``difficulty`` entry), None for any other world."""
     difficulty = getattr(world, "difficulty", None)
@@ -110,13 +130,21 @@ def world_family(world) -> str | None:
 
 
 def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path: str | None = None,
-         keep_paths: bool = False) -> list[Job]:
+         keep_paths: bool = False, robot=None, learn: str | None = None) -> list[Job]:
     """Every (architecture, world, trial) of a comparison, in a fixed order — world by world, so that a worker
-    plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``."""
+    plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``.
+    ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera); ``learn``: the spelling
+    of the learning rule of the maps that drive (None: frozen)."""
     from robots.controllers.spec import added
 
+    document = None
+    if robot is not None:
+        from robots.robotfile import robot_json
+
+        document = robot_json(robot)
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
-                map_path=map_path, keep_path=keep_paths and i == 0, added=added(spec.name))
+                map_path=map_path, keep_path=keep_paths and i == 0, added=added(spec.name), robot=document,
+                learn=learn if spec.uses_map else None)
             for w in worlds for i in range(trials) for spec in specs]
 
 

@@ -138,6 +138,11 @@ class RunRecord:
     trap_log: list = field(default_factory=list)  # (t, x, y) where the monitor fired
     hits: list = field(default_factory=list)  # (t, (n, 2) world points the IR saw)
     goal_path: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))  # (ticks, 2) goal at each tick
+    robot: object = None  # the RobotParams that drove
+    map_robot: str | None = None  # the robot the map was trained on (None: no map)
+    final_state: object = None  # the controller's state when the run ended
+    learned: object = None  # with learning: the map the run ended with (one trial's pytree)
+    updates: int | None = None  # with learning: the map's updates during the run
 
     def outcome(self) -> dict:
         """The ``ekm run --json`` record: ``world, architecture, reached, time_s, path_m, collisions`` (contact
@@ -145,14 +150,23 @@ class RunRecord:
         contact), ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
         stopped), ``seed``, ``map`` and ``trial`` (which map drove), then how it moved
         (:mod:`evaluation.motion`: ``command_change_mps, angular_accel_rms, stopped_s, turn_reversals_per_m,
-        path_ratio, stop_distance_m``)."""
+        path_ratio, stop_distance_m``), then the robot (:meth:`robot_record`)."""
         return {"world": self.world.name, "architecture": self.architecture, "reached": self.reached,
                 "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
                 "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,
                 "final_distance_m": round(self.final_distance_m, 5), "contact_s": round(self.contact_s, 3),
                 "arrived": self.arrived,
                 "recoveries": self.recoveries, "ended": self.ended, "seed": self.seed,
-                "map": self.map_source or None, "trial": self.trial, **self.motion()}
+                "map": self.map_source or None, "trial": self.trial, **self.motion(), **self.robot_record()}
+
+    def robot_record(self) -> dict:
+        """Which robot drove (``robot``, its physics' ``robot_fingerprint``), which the map was trained on
+        (``map_robot``; None without a map) and, when the map learned during the run, its ``updates``."""
+        from robots.params import KHEPERA
+
+        robot = self.robot or KHEPERA
+        return {"robot": robot.name, "robot_fingerprint": robot.fingerprint, "map_robot": self.map_robot,
+                "updates": self.updates}
 
     def motion(self) -> dict:
         """How the run moved (:func:`evaluation.motion.measures`), the planner's first route as the reference."""
@@ -189,7 +203,9 @@ def run_scenario(world: World, controller: Controller, seed: int = 0, config: Sc
             state, command = step(state, obs)
             obs = ticks.send(command)
     except StopIteration as done:
-        return done.value
+        rec = done.value
+        rec.final_state = state
+        return rec
 
 
 def episode(world: World, body, seed: int = 0, config: ScenarioConfig = ScenarioConfig(), spec: str = "",
@@ -206,9 +222,14 @@ def episode(world: World, body, seed: int = 0, config: ScenarioConfig = Scenario
     period = robot.avoid_period
     sim = PymunkWorld(world, params=robot, seed=seed)
     capture = robot.radius if config.capture_radius is None else config.capture_radius
-    rec = RunRecord(world=world, architecture=spec, seed=seed, period=period)
+    rec = RunRecord(world=world, architecture=spec, seed=seed, period=period, robot=robot)
     known = world  # the planner's map: the world's known shapes (+ what recovery adds)
-    current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine)
+    clear = float(world.clearance(np.asarray(world.start[:2]), 0.0))
+    if clear < robot.radius:
+        raise InputError(f"{world.name}: the robot {robot.name} (radius {robot.radius:g} m) does not fit at the start "
+                         f"{list(world.start[:2])} (clearance {clear:.3f} m)")
+    current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine,
+                   padding=robot.radius)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
     sight = padded_obstacles(world, 0.0, robot.radius)  # the planner's map, for the look past a checkpoint
     index, target_id = 0, 0
@@ -226,7 +247,8 @@ def episode(world: World, body, seed: int = 0, config: ScenarioConfig = Scenario
     def replan_from(t: float, reason: str, added=np.zeros((0, 2))) -> bool:
         nonlocal current, index, target_id, sight
         try:
-            current = replan(current, known, sim.pose[:2], t, reach=config.start_reach, refine=config.refine)
+            current = replan(current, known, sim.pose[:2], t, padding=robot.radius, reach=config.start_reach,
+                             refine=config.refine)
         except InputError:  # NoRouteError included: the change left no way through
             return False
         sight = padded_obstacles(known, t, robot.radius)
@@ -495,21 +517,29 @@ def with_sensed(known: World, points, readings, radius: float, noise: float = 0.
 
 
 def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int | None = None,
-                     config: ScenarioConfig = ScenarioConfig(), on_tick=None, source: str = "given map") -> RunRecord:
+                     config: ScenarioConfig = ScenarioConfig(), on_tick=None, source: str = "given map",
+                     robot=None, learn=None) -> RunRecord:
     """Run the architecture ``spec`` (:class:`robots.controllers.spec.ArchitectureSpec`) through ``world``.
 
     ``maps``: a :class:`ekm.mapfile.SavedMaps` (``ekm train``'s file), or None for the shipped map of the
     architecture's chart (:mod:`ekm.data`); ``source`` names a given one in the record. ``trial``: which of
     its trials drives; by default
     ``seed % trials``, so that seeds 0–9 run every trained map of a 5-trial file twice, each time with
-    other noise.
+    other noise. ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera).
+    ``learn``: a :class:`robots.controllers.learner.LearnParams` — the map goes on learning during the run
+    (the map it ends with is the record's ``learned``) — or None for a frozen map.
     """
     import jax
 
+    from robots.params import KHEPERA
+
+    robot = KHEPERA if robot is None else robot
     if not spec.uses_map:  # Samba, motor schemas: no EKM to drive
         if maps is not None or trial is not None:
             raise InputError(f"architecture {spec.name} drives no map: drop the map and trial")
-        rec = run_scenario(world, spec.build(), seed=seed, config=config, on_tick=on_tick)
+        if learn is not None:
+            raise InputError(f"architecture {spec.name} drives no map: it has nothing to learn (drop --learn)")
+        rec = run_scenario(world, spec.build(robot=robot), seed=seed, config=config, on_tick=on_tick)
         rec.map_source, rec.trial = "", None
         return rec
     if maps is None:
@@ -521,6 +551,21 @@ def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int
     if not 0 <= trial < maps.trials:
         raise InputError(f"trial {trial}: the map file holds trials 0..{maps.trials - 1}")
     ekm = jax.tree.map(lambda a: a[trial], maps.ekm)
-    rec = run_scenario(world, spec.build(ekm, maps.cfg), seed=seed, config=config, on_tick=on_tick)
+    controller = spec.build(ekm, maps.cfg, robot=robot)
+    if learn is not None:
+        from robots.controllers.learner import learning
+
+        controller = learning(controller, ekm, maps.cfg, learn)
+    rec = run_scenario(world, controller, seed=seed, config=config, on_tick=on_tick)
     rec.map_source, rec.trial = source, int(trial)
+    rec.map_robot = map_robot(maps)
+    if learn is not None:
+        rec.learned = rec.final_state.ekm
+        rec.updates = int(rec.final_state.trace.updates)
     return rec
+
+
+def map_robot(maps) -> str:
+    """The name of the robot a map file was trained on (``khepera`` for files that do not say)."""
+    robot = maps.meta.get("robot") if isinstance(maps.meta, dict) else None
+    return robot.get("name", "khepera") if isinstance(robot, dict) else "khepera"

@@ -90,10 +90,14 @@ def body_twist(speeds, params: RobotParams = KHEPERA):
 
 def motor_twist(wheels, setpoint, noise, n: int, params: RobotParams = KHEPERA, xp=np):
     """The motors through one control period: forward speed ``v`` and turn rate ``ω`` ``(..., n)`` held in
-    each sub-step (lag of :func:`wheel_speeds`, then :func:`slip`), and the wheel speeds at its end.
+    each sub-step (lag of :func:`wheel_speeds`, then :func:`slip`, then each wheel's ``wheel_gain``: a wheel
+    10 % smaller moves the robot 10 % less for the same motor speed), and the motors' speeds at its end.
     Both simulators move the body with these (:func:`advance` here, ``PymunkWorld.step`` in pymunk)."""
     speeds, wheels = wheel_speeds(wheels, setpoint, n, params, xp)
-    v, omega = body_twist(slip(speeds, noise, params, xp), params)
+    speeds = slip(speeds, noise, params, xp)
+    if params.gained:  # (a gain of 1 would change no bit; it is left out of the compiled step)
+        speeds = speeds * xp.asarray(params.wheel_gain, dtype=speeds.dtype)
+    v, omega = body_twist(speeds, params)
     return v, omega, wheels
 
 
@@ -146,6 +150,27 @@ def step(state: RobotState, command, noise, n: int, params: RobotParams = KHEPER
 def wrap_angle(a, xp=np):
     """Wrap angles to (-π, π]."""
     return xp.pi - xp.mod(xp.pi - a, 2.0 * xp.pi)
+
+
+def repeated(start, end, times: int, xp=np):
+    """Where a robot that moved from pose ``start`` to pose ``end`` ``(..., 3)`` would be had it made the same
+    motion ``times`` times in a row, each turned by the heading change of the one before — seen from ``start``
+    as (α, d) (:func:`egocentric`).
+
+    A differential-drive robot that holds its wheel speeds repeats one control period's motion, turned by the
+    period's heading change φ: its k-th chord is the first one turned by k φ, so it ends at the first chord
+    times Σ_{k<times} e^{i k φ} (a circular arc, sampled as the simulators integrate it). How its wheels make
+    that motion — gains, base, speed limit — does not enter.
+    """
+    phi = wrap_angle(end[..., 2] - start[..., 2], xp)
+    dx, dy = end[..., 0] - start[..., 0], end[..., 1] - start[..., 1]
+    c, s = xp.cos(start[..., 2]), xp.sin(start[..., 2])
+    ahead, left = c * dx + s * dy, -s * dx + c * dy  # the first chord in the start frame
+    k = xp.arange(times, dtype=phi.dtype if hasattr(phi, "dtype") else float)
+    turns = phi[..., None] * k
+    gx, gy = xp.sum(xp.cos(turns), axis=-1), xp.sum(xp.sin(turns), axis=-1)
+    x, y = ahead * gx - left * gy, ahead * gy + left * gx
+    return xp.stack([xp.arctan2(y, x), xp.hypot(x, y)], axis=-1)
 
 
 def egocentric(pose, point, xp=np):

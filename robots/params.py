@@ -1,6 +1,8 @@
-"""Parameters of the Khepera-like robot, in one frozen dataclass (docs/design.md §2).
+"""Parameters of a differential-drive robot, in one frozen dataclass (docs/design.md §2), and the Khepera.
 
-Every number names its source. SI units throughout: metres, seconds, radians.
+Every number of :data:`KHEPERA` names its source. SI units throughout: metres, seconds, radians. Other
+robots are data: robot files (:mod:`robots.robotfile`) hold every field, and ``ekm robots`` lists the
+named ones.
 """
 
 from __future__ import annotations
@@ -49,10 +51,16 @@ class RobotParams:
     multiplied by ``1 + σ ξ``, ``ξ ~ U(-1, 1)``, redrawn every ``noise_period`` (Webots' default
     ``basicTimeStep`` of 32 ms, of which 1.024 s and 0.128 s are 32 and 4). ``noise_period =
     target_period`` gives the harsher model of one draw per target-reaching command.
+
+    ``wheel_gain`` is what a real robot varies in: each wheel's speed is its motor's times its gain, so a
+    wheel 10 % smaller than the controller assumes is 0.9, a motor that delivers 80 % of its command 0.8.
+    The controller does not know it; a learning map finds it out (docs/design.md §10).
     """
 
+    name: str = "khepera"  # what ``--robot`` calls it; recorded in every result
     radius: float = 0.025  # body radius 25 mm (thesis ch. 6.1 and 6.2.2)
     wheel_base: float = 0.053  # distance between the wheels, 53 mm (K-Team Khepera I manual; Webots khepera)
+    wheel_gain: tuple[float, float] = (1.0, 1.0)  # (left, right): a wheel's speed over its motor's (1 = as commanded)
     max_wheel_speed: float = 0.16  # c*: one 1.024 s step moves at most ~0.16 m (thesis ch. 6.1)
     speed_unit: float = 0.008  # Khepera speed commands are integers of 8 mm/s (K-Team manual); 0 = exact
     motor_tau: float = 0.02  # first-order motor lag (s): the non-linearity of Eq. 4.1's discussion
@@ -63,6 +71,12 @@ class RobotParams:
     dt: float = 0.016  # physics sub-step: 64 per target-reaching step, 8 per avoidance step
     short_range: SensorSet = field(default=SHORT_RANGE)
     long_range: SensorSet = field(default=LONG_RANGE)
+    about: str = "the thesis's Khepera: 25 mm radius, 53 mm wheel base, 0.16 m/s, 10 % slip and IR noise"
+
+    @property
+    def gained(self) -> bool:
+        """Whether a wheel's speed differs from its motor's (``wheel_gain`` other than 1, 1)."""
+        return tuple(self.wheel_gain) != (1.0, 1.0)
 
     def substeps(self, period: float) -> int:
         """Number of physics sub-steps in one control period (which must be a multiple of ``dt``)."""
@@ -81,6 +95,23 @@ class RobotParams:
     def to_dict(self) -> dict:
         """Every parameter, for the metadata of saved maps."""
         return asdict(self)
+
+    def physics(self) -> dict:
+        """Every parameter that changes how the robot moves or senses: :meth:`to_dict` without ``name`` and
+        ``about`` (two robots with the same physics are the same robot to a map)."""
+        d = self.to_dict()
+        del d["name"], d["about"]
+        return d
+
+    @property
+    def fingerprint(self) -> str:
+        """12 hex digits of the SHA-256 of :meth:`physics` as canonical JSON: which robot a result or a map was
+        made on, whatever it was called."""
+        import hashlib
+        import json
+
+        text = json.dumps(self.physics(), sort_keys=True, separators=(",", ":"))
+        return hashlib.sha256(text.encode()).hexdigest()[:12]
 
     @property
     def max_step_distance(self) -> float:

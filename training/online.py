@@ -20,6 +20,7 @@ import jax.numpy as jnp
 
 from ekm import maps
 from ekm.config import EKMConfig
+from ekm.learning import Adaptation, Trace, adapt, fresh_trace
 from robots.kinematics import RobotState, advance_pose, egocentric, is_stop_command, quantize_command
 from robots.params import KHEPERA, RobotParams
 from training.schedules import Schedules
@@ -45,26 +46,32 @@ class TrainConfig:
     reach: float = 0.0  # m; > 0: a target closer than this (or a stop command) is done early
     patience: int = 25  # steps on one target before a new one is drawn
     schedules: Schedules = field(default_factory=Schedules)
+    # Fine-tuning a trained map (``ekm train --init``): η and σ from this rule (``ekm.learning``) instead of
+    # the decaying schedules, which are for a map that starts from nothing; the exploration stays.
+    adapt: Adaptation | None = None
 
     def to_dict(self) -> dict:
         return asdict(self)
 
 
 class Trainee(NamedTuple):
-    """Per-trial training carry: the map, the robot, the current target and how long it has been on it."""
+    """Per-trial training carry: the map, the robot, the current target, how long it has been on it, and the
+    map's recent prediction error (:class:`ekm.learning.Trace`; fine-tuning only)."""
 
     ekm: object
     robot: RobotState
     target: jax.Array  # (2,)
     age: jax.Array  # int32: steps spent on the current target
+    trace: Trace
 
 
-def start(key, cfg: EKMConfig, tcfg: TrainConfig) -> Trainee:
-    """A fresh map and a robot at rest at the arena centre, heading along x, with a first target from ``key``."""
+def start(key, cfg: EKMConfig, tcfg: TrainConfig, ekm=None) -> Trainee:
+    """A map — fresh, or ``ekm`` to go on training — and a robot at rest at the arena centre, heading along x,
+    with a first target from ``key``."""
     centre = jnp.asarray([0.5 * tcfg.arena[0], 0.5 * tcfg.arena[1], 0.0], jnp.float32)
     robot = RobotState(pose=centre, wheels=jnp.zeros(2, jnp.float32))
     target = next_target(centre, jax.random.uniform(key, (2,)), tcfg)
-    return Trainee(maps.init(cfg), robot, target, jnp.zeros((), jnp.int32))
+    return Trainee(maps.init(cfg) if ekm is None else ekm, robot, target, jnp.zeros((), jnp.int32), fresh_trace())
 
 
 def next_target(robot_pose, draw, tcfg: TrainConfig):
@@ -95,12 +102,15 @@ def train_step(s: Trainee, draws, t, cfg: EKMConfig, tcfg: TrainConfig, params: 
     c_sent = quantize_command(c_p + sch.explore(t, tcfg.steps) * cfg.c_max * xi_explore, params, jnp)
     robot = advance_pose(s.robot, c_sent, xi_act, n, params, jnp)
     v = egocentric(s.robot.pose, robot.pose[:2], jnp)  # 3. actual displacement, seen from the start pose
-    ekm = maps.update(s.ekm, v, c_sent, sch.eta(t, tcfg.steps), sch.sigma(t, tcfg.steps), cfg)  # 4.–6.
+    if tcfg.adapt is None:  # 4.–6.
+        ekm, trace = maps.update(s.ekm, v, c_sent, sch.eta(t, tcfg.steps), sch.sigma(t, tcfg.steps), cfg), s.trace
+    else:
+        ekm, trace = adapt(s.ekm, v, c_sent, s.trace, tcfg.adapt, cfg)
     done = s.age + 1 >= tcfg.patience
     if tcfg.reach > 0:
         done = done | (egocentric(robot.pose, s.target, jnp)[1] < tcfg.reach) | is_stop_command(c_sent, params, jnp)
     target = jnp.where(done, next_target(robot.pose, target_draw, tcfg), s.target)
-    return Trainee(ekm, robot, target, jnp.where(done, 0, s.age + 1))
+    return Trainee(ekm, robot, target, jnp.where(done, 0, s.age + 1), trace)
 
 
 def draw_noise(key, length: int, params: RobotParams = KHEPERA):

@@ -25,10 +25,14 @@ from training.online import TrainConfig, start, train_chunk
 MAX_CHUNK = 5000
 
 
-def fresh(cfg: EKMConfig, tcfg: TrainConfig, seed: int):
-    """The untrained carry of every trial and the run's key: ``(trainees, key_run)``."""
+def fresh(cfg: EKMConfig, tcfg: TrainConfig, seed: int, init=None):
+    """The carry of every trial at step 0 and the run's key: ``(trainees, key_run)``. The maps are untrained, or
+    ``init`` (stacked maps, one per trial) to go on training."""
     key_init, key_run = jax.random.split(jax.random.PRNGKey(seed))
-    return jax.vmap(lambda k: start(k, cfg, tcfg))(jax.random.split(key_init, tcfg.trials)), key_run
+    keys = jax.random.split(key_init, tcfg.trials)
+    if init is None:
+        return jax.vmap(lambda k: start(k, cfg, tcfg))(keys), key_run
+    return jax.vmap(lambda k, m: start(k, cfg, tcfg, m))(keys, init), key_run
 
 
 def trial_layout(trials: int, devices=None):
@@ -96,15 +100,19 @@ def _unpad(tree, trials: int, device=None):
 
 
 def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int | None = None, on_eval=None,
-          on_checkpoint=None, resume=None, progress: bool = False, params: RobotParams = KHEPERA):
-    """Train ``tcfg.trials`` maps online; returns the stacked maps (leading trial axis).
+          on_checkpoint=None, resume=None, progress: bool = False, params: RobotParams = KHEPERA, init=None,
+          until: int | None = None):
+    """Train ``tcfg.trials`` maps online on the robot ``params``; returns the stacked maps (leading trial axis).
+    ``init``: stacked maps to go on training from (``ekm train --init``), one per trial; None: from scratch.
+    ``until``: stop after this many steps of the ``tcfg.steps``-step run (its schedules unchanged): the maps of
+    an early step of a long run, as the adaptation experiment needs them.
 
     ``on_eval(step, maps)`` is called at step 0, after every ``eval_every`` steps and at the end, each
     time followed by ``on_checkpoint(step, trainees, key_run)`` (not at step 0). ``resume``:
     ``(step, trainees, key_run)`` of a checkpoint taken after an evaluation; training continues from
     there and step 0 is not evaluated again.
     """
-    trainees, key_run = fresh(cfg, tcfg, seed)
+    trainees, key_run = fresh(cfg, tcfg, seed, init)
     done = 0
     if resume is not None:
         done, trainees, key_run = resume
@@ -113,16 +121,18 @@ def train(cfg: EKMConfig, tcfg: TrainConfig, *, seed: int = 0, eval_every: int |
     if sharding is not None:
         trainees = jax.device_put(_pad(trainees, padded), sharding)
     every = eval_every or tcfg.steps
+    last = tcfg.steps if until is None else min(until, tcfg.steps)
     bar = None
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(total=tcfg.steps, initial=done, unit="step", desc=f"training {cfg.mapping} ({tcfg.trials} trials)",
+        verb = "training" if tcfg.adapt is None else "fine-tuning"
+        bar = tqdm(total=last, initial=done, unit="step", desc=f"{verb} {cfg.mapping} ({tcfg.trials} trials)",
                    dynamic_ncols=True)
     if on_eval and done == 0:
         on_eval(0, _unpad(trainees.ekm, tcfg.trials, one))
-    while done < tcfg.steps:
-        target = min(tcfg.steps, (done // every + 1) * every)
+    while done < last:
+        target = min(last, (done // every + 1) * every)
         while done < target:
             length = min(MAX_CHUNK, target - done)
             keys = jax.random.split(jax.random.fold_in(key_run, done), tcfg.trials)

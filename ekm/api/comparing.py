@@ -38,6 +38,8 @@ class Table(Result):
     records: tuple = field(repr=False, compare=False, default=())
     families: tuple = ()
     overall: tuple = ()
+    robot: dict | None = None  # {"name", "fingerprint"} of the robot every run drove
+    learn: str | None = None  # the learning rule of the maps, None: frozen
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance
@@ -51,7 +53,8 @@ class Table(Result):
                      "reason": r["failed"]} for r in self.records if "failed" in r]
         if failures:
             out["failures"] = failures
-        return {**out, "trials": self.trials, "seed": self.seed, "seconds": round(self.seconds, 2),
+        return {**out, "robot": self.robot, "learn": self.learn, "trials": self.trials, "seed": self.seed,
+                "seconds": round(self.seconds, 2),
                 "runs": len(self.records), "workers": self.workers, "config": asdict(self.config), **provenance()}
 
     def plot(self):
@@ -115,7 +118,7 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
             trials: int = 10, seed: int = 0, maps=None, recover: bool = True,
             time_limit: float = 120.0, checkpoints: str = "visible", cell: float | None = None,
             workers: int | None = None, scheduler: str | None = None, out=None, resume=None,
-            progress: bool = False) -> Table:
+            robot=None, learn=None, progress: bool = False) -> Table:
     """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
     intervals (thesis ch. 6.2 at scale). Trial i runs with seed ``seed + i`` for every architecture and
     world (the same noise for all of them), so the result does not depend on ``workers`` or ``scheduler``.
@@ -159,6 +162,11 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
         A results file of an earlier, unfinished call with the same arguments: only the missing runs are
         made, and appended to it; the table is the same as an uninterrupted comparison's. A file made with
         other arguments is refused.
+    robot : str or RobotParams, optional
+        The robot every run drives (``ekm robots``; default the Khepera), as :func:`ekm.run` takes it.
+    learn : str or bool, optional
+        The maps of the architectures that drive one go on learning during each run (:func:`ekm.run`'s
+        ``learn``); every run starts from the same map. Default: frozen.
     progress : bool, default False
         Show a progress bar (runs done, failed, time left) on stderr.
 
@@ -211,20 +219,31 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     if len(set(labels)) != len(labels):
         raise InputError(f"--architectures {text!r}: an architecture is named twice")
     map_path = _map_path(maps, specs)
-    job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True)
+    from robots.robotfile import load_robot
+
+    robot = load_robot(robot)
+    learning = None
+    if learn is not None and learn is not False:
+        from robots.controllers.learner import parse_learning, spell_learning
+
+        learning = spell_learning(parse_learning(learn))
+        if not any(s.uses_map for s in specs):
+            raise InputError("--learn: none of the architectures drives a map, so none has anything to learn")
+    job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True, robot=robot, learn=learning)
     settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)
         "worlds": names, "architectures": [str(s) for s in specs], "labels": labels, "trials": trials, "seed": seed,
-        "config": asdict(config), "map": map_path, "ekm_version": _version()}))
+        "config": asdict(config), "map": map_path, "robot": {"name": robot.name, "fingerprint": robot.fingerprint},
+        "learn": learning, "ekm_version": _version()}))
     pool = workers_for(run_job, workers, scheduler)
     batch = Batch("comparison", "run", "comparing", job_key=lambda j: key(j.world, j.label, j.trial),
-                  identity=lambda j: _identity(j, map_path))
+                  identity=lambda j: _identity(j, map_path, robot))
     t0 = time.perf_counter()
     records = run_batch(batch, job_list, pool, settings, out=out, resume=resume, progress=progress)
     seconds = time.perf_counter() - t0
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
                  trials=trials, seed=seed, seconds=seconds, workers=pool.where, config=config,
                  records=tuple(records), families=tuple(by_family(records, labels)),
-                 overall=tuple(by_architecture(records, labels)))
+                 overall=tuple(by_architecture(records, labels)), robot=settings["robot"], learn=learning)
 
 
 def load_comparison(path) -> Table:
@@ -252,7 +271,8 @@ def load_comparison(path) -> Table:
     return Table(rows=tuple(summarize(ordered, names, labels)), worlds=tuple(names), labels=tuple(labels),
                  trials=trials, seed=settings["seed"], seconds=0.0, workers=f"results file {path}",
                  config=ScenarioConfig(**settings["config"]), records=tuple(ordered),
-                 families=tuple(by_family(ordered, labels)), overall=tuple(by_architecture(ordered, labels)))
+                 families=tuple(by_family(ordered, labels)), overall=tuple(by_architecture(ordered, labels)),
+                 robot=settings.get("robot"), learn=settings.get("learn"))
 
 
 def _version() -> str:
@@ -261,10 +281,11 @@ def _version() -> str:
     return __version__
 
 
-def _identity(job, map_path) -> dict:
+def _identity(job, map_path, robot) -> dict:
     """A run's job as the results file names it."""
     return {"world": job.world, "architecture": job.architecture, "label": job.label, "trial": job.trial,
-            "seed": job.seed, "map": map_path, "ekm_version": _version()}
+            "seed": job.seed, "map": map_path, "robot": robot.name, "robot_fingerprint": robot.fingerprint,
+            "learn": job.learn, "ekm_version": _version()}
 
 
 def _map_path(maps, specs) -> str | None:

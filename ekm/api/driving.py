@@ -59,18 +59,55 @@ class Outcome(Result):
     config: object = field(repr=False)
     record: object = field(repr=False, compare=False)
     spec: object = field(repr=False, compare=False)
+    spec_maps: object = field(repr=False, compare=False, default=None)  # the maps that drove (None: none)
+    learn_spelling: str | None = field(repr=False, compare=False, default=None)  # the learning rule, if any
     command_change_mps: float | None = None
     angular_accel_rms: float | None = None
     stopped_s: float | None = None
     turn_reversals_per_m: float | None = None
     path_ratio: float | None = None
     stop_distance_m: float | None = None
+    robot: str = "khepera"
+    robot_fingerprint: str = ""
+    map_robot: str | None = None
+    updates: int | None = None
+
+    @property
+    def learned(self):
+        """With ``learn``: the map the run ended with, as one-trial :class:`~ekm.api.mapset.Maps` (save it with
+        :meth:`save_map` and drive a later run with it); None for a frozen map."""
+        rec = self.record
+        if rec is None or rec.learned is None:
+            return None
+        import jax
+
+        from ekm.api.mapset import Maps
+
+        base = self.spec_maps
+        meta = {k: v for k, v in base.meta.items() if k not in ("format", "version", "mapping", "neurons", "trials",
+                                                               "ekm")}
+        meta["learned"] = list(meta.get("learned", [])) + [{
+            "from": rec.map_source, "trial": rec.trial, "world": rec.world.name, "architecture": rec.architecture,
+            "seed": rec.seed, "robot": rec.robot.name, "robot_fingerprint": rec.robot.fingerprint,
+            "updates": rec.updates, "rule": self.learn_spelling}]
+        meta["robot"] = rec.robot.to_dict()
+        stacked = jax.tree.map(lambda a: a[None], rec.learned)
+        return Maps(ekm=stacked, cfg=base.cfg, meta=meta, arena=base.arena, curve=(), path=None,
+                    source=f"learned in {rec.world.name} (seed {rec.seed})")
+
+    def save_map(self, path) -> Path:
+        """:attr:`learned` to a map file at ``path`` (atomically); refused for a run whose map did not learn."""
+        learned = self.learned
+        if learned is None:
+            raise InputError("--save-map: the map did not learn during this run (give --learn)")
+        return learned.save(path)
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance
 
-        outcome = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("config", "record", "spec")}
-        return {**outcome, "config": asdict(self.config), **provenance()}
+        hidden = ("config", "record", "spec", "spec_maps", "learn_spelling")
+        outcome = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in hidden}
+        return {**outcome, "learn": self.learn_spelling, "config": asdict(self.config), **provenance()}
 
     def plot(self, ax=None):
         """The run to scale on ``ax`` (a new figure sized to the arena if None): world, path coloured by
@@ -98,7 +135,7 @@ class Outcome(Result):
 
 def run(world, architecture: str, *, maps=None, trial: int | None = None, sensors: str | None = None,
         recover: bool = True, seed: int = 0, time_limit: float = 120.0, checkpoints: str = "visible",
-        cell: float | None = None, progress: bool = False) -> Outcome:
+        cell: float | None = None, robot=None, learn=None, progress: bool = False) -> Outcome:
     """Drive the simulated robot from the world's start to its goal: the slippery-cell planner's
     checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; docs/design.md §5).
 
@@ -130,6 +167,13 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
     cell : float, optional
         The planner's bitmap cell in metres (default 0.02), halved automatically where a narrow place
         holds no route.
+    robot : str, RobotParams, optional
+        The robot that drives: a named robot (``ekm robots``) or a robot file (default: the Khepera). A map
+        trained on another robot drives it as it is (the outcome's ``map_robot`` says which).
+    learn : str, bool or LearnParams, optional
+        Let the architecture's map go on learning while it drives (thesis ch. 4.3): ``True`` or a rule,
+        ``"error"``, ``"constant:eta=0.1,sigma=1"`` (:func:`robots.controllers.learner.parse_learning`);
+        the map it ends with is ``outcome.learned`` (``save_map``). Default: the map is frozen.
     progress : bool, default False
         Show a progress bar in simulated seconds on stderr.
 
@@ -160,10 +204,20 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         maps, trial = maps.maps, maps.trial
     if trial is not None:
         trial = whole(trial, "--trial", _PROG, strict=False)
+    from robots.robotfile import load_robot
+
     w = load_world(world)
+    robot = load_robot(robot)
     spec = parse_architecture(architecture)
     if sensors:
         spec = spec.with_params(sensors=sensors)
+    learning = None
+    if learn is not None and learn is not False:
+        from robots.controllers.learner import parse_learning, spell_learning
+
+        learning = parse_learning(learn)
+        if not spec.uses_map:
+            raise InputError(f"--learn: architecture {spec.name} drives no map, so it has nothing to learn")
     if not spec.uses_map and (maps is not None or trial is not None):
         raise InputError(f"--map/--trial: architecture {spec.name} drives no map")
     if spec.uses_map:
@@ -187,8 +241,10 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
 
     try:
         rec = run_architecture(w, spec, maps, seed=seed, trial=trial if spec.uses_map else None, config=config,
-                               on_tick=on_tick, source=maps.source if maps is not None else "")
+                               on_tick=on_tick, source=maps.source if maps is not None else "", robot=robot,
+                               learn=learning)
     finally:
         if bar is not None:
             bar.close()
-    return Outcome(**rec.outcome(), config=config, record=rec, spec=spec)
+    return Outcome(**rec.outcome(), config=config, record=rec, spec=spec, spec_maps=maps,
+                   learn_spelling=None if learning is None else spell_learning(learning))

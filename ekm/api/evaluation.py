@@ -11,15 +11,23 @@ from ekm.api.result import Result
 _PROG = "ekm evaluate"
 #: Metrics of the test (docs/design.md §6), then what was tested — the order of ``ekm evaluate --json``.
 _KEYS = ("E_mm", "P", "T", "D", "trials", "targets", "capped")
-_ABOUT = ("file", "mapping", "ekm", "trained")
+_ABOUT = ("file", "mapping", "ekm", "trained", "robot", "map_robot")
 
 
-def summarize_test(maps, cfg, arena, targets: int, seed: int) -> dict:
-    """The ch. 6.1 test of stacked maps, summarised (E, P, T, D, capped)."""
+def summarize_test(maps, cfg, arena, targets: int, seed: int, robot=None) -> dict:
+    """The ch. 6.1 test of stacked maps on ``robot`` (None: the Khepera), summarised (E, P, T, D, capped) with E's
+    95 % interval over trials × targets (``E_ci95``, mm)."""
     from evaluation.metrics import summarize
     from evaluation.protocol import evaluate as run_test
+    from robots.params import KHEPERA
 
-    return summarize(run_test(maps, cfg, arena, targets=targets, seed=seed))
+    import numpy as np
+
+    from evaluation.motion import mean_ci
+
+    records = run_test(maps, cfg, arena, targets=targets, seed=seed, params=robot or KHEPERA)
+    _, ci = mean_ci(list(1000.0 * np.asarray(records.error, float).ravel()))
+    return {**summarize(records), "E_ci95": [round(x, 4) for x in ci]}
 
 
 @dataclass(frozen=True)
@@ -51,6 +59,9 @@ class Metrics(Result):
     trained: dict
     seed: int
     maps: object = field(repr=False, compare=False, default=None)
+    robot: str = "khepera"  # the robot the test drove
+    map_robot: str = "khepera"  # the robot the map was trained on
+    robot_params: object = field(repr=False, compare=False, default=None)
 
     def _entry(self) -> dict:
         return {k: getattr(self, k) for k in _ABOUT[:2] + _KEYS + _ABOUT[2:]}
@@ -124,14 +135,15 @@ class Evaluation(Result):
         panels = []
         for m in self.items:
             saved = m.maps
-            pts, start, xy, rec = trace_paths(saved.ekm, saved.cfg, saved.arena, targets=m.targets, seed=m.seed)
+            pts, start, xy, rec = trace_paths(saved.ekm, saved.cfg, saved.arena, targets=m.targets, seed=m.seed,
+                                              params=m.robot_params)
             panels.append({"label": f"{m.mapping} ({Path(m.file).name}, trial 1)", "targets": pts, "start": start,
                            "xy": xy, "summary": summarize(rec)})
         save_paths_figure(panels, self.items[0].maps.arena, out)
         return out
 
 
-def evaluate(maps, *, targets: int = 50, seed: int = 0):
+def evaluate(maps, *, targets: int = 50, seed: int = 0, robot=None):
     """Run the ch. 6.1 positioning test on trained maps: every trial drives from the arena's centre to
     ``targets`` random targets in sequence (no learning), at most 50 steps of 1.024 s each, with the
     actuator noise of training.
@@ -145,6 +157,9 @@ def evaluate(maps, *, targets: int = 50, seed: int = 0):
         Test targets per trial.
     seed : int, default 0
         Seed of the targets and the noise.
+    robot : str or RobotParams, optional
+        The robot the test drives (``ekm robots``; default the Khepera); the result says which robot each map
+        was trained on (``map_robot``).
 
     Returns
     -------
@@ -160,16 +175,19 @@ def evaluate(maps, *, targets: int = 50, seed: int = 0):
         ekm.evaluate(["indirect.npz", "direct.npz"]).save_plot("fig6.png")
     """
     from ekm.api.mapset import load
+    from evaluation.scenario import map_robot
+    from robots.robotfile import load_robot
 
+    robot = load_robot(robot)
     targets = whole(targets, "--targets", _PROG, strict=True)
     seed = whole(seed, "--seed", _PROG, strict=False)
     several = isinstance(maps, (list, tuple))
     loaded = [load(m) for m in (maps if several else [maps])]
     items = []
     for saved in loaded:
-        s = summarize_test(saved.ekm, saved.cfg, saved.arena, targets, seed)
+        s = summarize_test(saved.ekm, saved.cfg, saved.arena, targets, seed, robot)
         trained = {k: saved.meta.get(k) for k in ("seed", "steps", "package_version", "jax_version")}
         items.append(Metrics(file=saved.path or saved.source, mapping=saved.cfg.mapping,
                              **{k: s[k] for k in _KEYS}, ekm=saved.cfg.to_dict(), trained=trained, seed=seed,
-                             maps=saved))
+                             maps=saved, robot=robot.name, map_robot=map_robot(saved), robot_params=robot))
     return Evaluation(tuple(items)) if several else items[0]

@@ -14,13 +14,15 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ekm.cli import architectures, bench, compare, evaluate, match, plan, players, run, tournament, train, worlds
+from ekm.cli import (adapt, architectures, bench, compare, evaluate, match, plan, players, robots, run, tournament, train,
+                     worlds)
 from ekm.cli.args import (finite_float, nonneg_float, nonneg_int, output_path, positive_float, positive_int,
                           print_json, show_progress, xy_point)
 from ekm.errors import InputError, Interrupted
 
 #: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here.
-COMMANDS = (worlds, plan, train, evaluate, architectures, run, compare, match, tournament, players, bench)
+COMMANDS = (worlds, robots, plan, train, evaluate, adapt, architectures, run, compare, match, tournament, players,
+            bench)
 
 __all__ = ["COMMANDS", "build_parser", "main", "finite_float", "nonneg_float", "nonneg_int", "output_path",
            "positive_float", "positive_int", "print_json", "show_progress", "xy_point"]

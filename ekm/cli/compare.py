@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 
 from ekm.cli.args import command, nonneg_int, output_path, positive_int, print_json, show_progress
-from ekm.cli.run import add_scenario_options
+from ekm.cli.run import add_robot_options, add_scenario_options
 
 
 def add_parser(sub) -> None:
@@ -40,6 +40,7 @@ def add_parser(sub) -> None:
                    help="send the runs to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
     add_scenario_options(p)
+    add_robot_options(p, "; every run starts from the same map")
     p.add_argument("--out", metavar="RESULTS.jsonl",
                    help="append every finished run to this results file as it arrives (JSON Lines; must not exist)")
     p.add_argument("--resume", metavar="RESULTS.jsonl",
@@ -75,7 +76,7 @@ def run(args) -> None:
                         trials=args.trials, seed=args.seed, maps=args.map, recover=args.recover,
                         time_limit=args.time_limit, checkpoints=args.checkpoints, cell=args.cell,
                         workers=args.workers, scheduler=args.scheduler, out=args.out, resume=args.resume,
-                        progress=show_progress(args))
+                        robot=args.robot, learn=args.learn, progress=show_progress(args))
     if plot:
         table.save_plot(plot)
     if args.json:
@@ -85,6 +86,7 @@ def run(args) -> None:
     print(f"{len(table.records)} runs ({len(table.labels)} architectures x {len(table.worlds)} worlds x {table.trials} "
           f"trials, seeds {table.seed}..{table.seed + table.trials - 1}) in {table.seconds:.0f} s on {table.workers}"
           + (f"; {failed} failed (the reasons: --json, or the results file)" if failed else ""))
+    print_robot(table)
     if table.families:
         print_families(table.families)
         named = [r for r in table.rows if not any(r["world"] == g["given"] for g in table.records if g.get("family"))]
@@ -97,6 +99,18 @@ def run(args) -> None:
         print_motion(table.overall)
     if plot:
         print(f"plot written to {plot}")
+
+
+def print_robot(table) -> None:
+    """The robot the runs drove, the robots their maps were trained on when that is another, and the learning."""
+    robots = sorted({r.get("robot") or "khepera" for r in table.records})
+    trained = sorted({r["map_robot"] for r in table.records if r.get("map_robot")} - set(robots))
+    line = f"robot: {', '.join(robots)}"
+    if trained:
+        line += f" (the maps were trained on {', '.join(trained)})"
+    if table.learn:
+        line += f"; the maps learn while driving ({table.learn})"
+    print(line)
 
 
 def print_families(rows) -> None:

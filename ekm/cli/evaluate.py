@@ -13,6 +13,8 @@ def add_parser(sub) -> None:
     p.add_argument("maps", nargs="+", metavar="MAP.npz", help="map file(s) from ekm train; several share one plot")
     p.add_argument("--targets", type=positive_int, default=50, help="test targets (default 50)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="seed of the test targets and noise (default 0)")
+    p.add_argument("--robot", metavar="NAME|FILE",
+                   help="the robot the test drives: a named robot or a robot file (default khepera; ekm robots)")
     p.add_argument("--plot", metavar="PNG", help="draw Fig. 6.1/6.2 with all maps on the same axes")
     p.add_argument("--paths", metavar="PNG", help="draw each map's paths through the first 10 test targets")
     p.add_argument("--json", action="store_true", help="print JSON")
@@ -25,7 +27,8 @@ def run(args) -> None:
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
     paths = output_path(args.paths, "--paths", ".png") if args.paths else None
-    result = evaluate(args.maps if len(args.maps) > 1 else args.maps[0], targets=args.targets, seed=args.seed)
+    result = evaluate(args.maps if len(args.maps) > 1 else args.maps[0], targets=args.targets, seed=args.seed,
+                      robot=args.robot)
     every = result if isinstance(result, Evaluation) else Evaluation((result,))
     if plot:
         every.save_plot(plot)
@@ -35,7 +38,8 @@ def run(args) -> None:
         print_json(result.to_dict())
         return
     for m in every.items:
-        print_summary(m.to_dict(), f"{m.file} ({m.mapping})")
+        trained = "" if m.map_robot == m.robot else f"; trained on {m.map_robot}"
+        print_summary(m.to_dict(), f"{m.file} ({m.mapping}) on {m.robot}{trained}")
     for out in (plot, paths):
         if out:
             print(f"plot written to {out}")

@@ -10,6 +10,18 @@ ARCHITECTURE_HELP = ("ARCH[:k=v,...]: fusion, fields, samba, schema, or one an i
                      "documented variant; ekm architectures lists them with their parameters")
 
 
+LEARN_HELP = ("the map of an architecture that drives one (fusion, fields) goes on learning during the run "
+              "(thesis ch. 4.3) at RULE's rates: error (default: faster while the map predicts badly), constant, "
+              "either with parameters (constant:eta=0.1,sigma=1), or 0 (rate 0: the frozen run, bit for bit)")
+
+
+def add_robot_options(p, learn_more: str = "") -> None:
+    """``--robot`` and ``--learn``, shared by ``ekm run`` and ``ekm compare``."""
+    p.add_argument("--robot", metavar="NAME|FILE",
+                   help="the robot that drives: a named robot or a robot file (default khepera; ekm robots lists them)")
+    p.add_argument("--learn", nargs="?", const="error", metavar="RULE", help=LEARN_HELP + learn_more)
+
+
 def add_scenario_options(p) -> None:
     """The options of how a run goes, shared by ``ekm run`` and ``ekm compare``."""
     import argparse
@@ -38,7 +50,11 @@ def add_parser(sub) -> None:
     p.add_argument("--sensors", type=one_of(SENSORS), metavar="{" + ",".join(SENSORS) + "}",
                    help="IR ring, overriding the architecture's (short: 8 Khepera sensors, 5 cm; long: 12, 17.5 cm)")
     add_scenario_options(p)
+    add_robot_options(p)
     p.add_argument("--map", metavar="MAP.npz", help="indirect map from ekm train (default: the shipped map)")
+    p.add_argument("--save-map", metavar="MAP.npz",
+                   help="with --learn: save the map the run ended with (one trial); --map MAP.npz drives a later run "
+                        "with it")
     p.add_argument("--trial", type=nonneg_int, metavar="K", help="which trial of the map drives (default: seed %% trials)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="noise seed of the run (default 0)")
     p.add_argument("--plot", metavar="PNG", help="draw the run to scale (Fig. 6.3-6.8)")
@@ -59,6 +75,11 @@ def run(args) -> None:
     pin_to_one_cpu()  # one run, one thread of work: one CPU for it (evaluation.pinning)
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
+    save_map = output_path(args.save_map, "--save-map", ".npz") if args.save_map else None
+    if save_map and args.learn is None:
+        from ekm.errors import InputError
+
+        raise InputError("--save-map: needs --learn (a frozen map ends the run as it began)")
     if args.maps_at is not None:
         from ekm.errors import InputError
         from robots.controllers.spec import parse_architecture
@@ -70,7 +91,7 @@ def run(args) -> None:
             raise InputError("--maps-at: needs --plot PNG to draw the maps on")
     outcome = drive(args.world, args.architecture, maps=args.map, trial=args.trial, sensors=args.sensors,
                     recover=args.recover, seed=args.seed, time_limit=args.time_limit, checkpoints=args.checkpoints,
-                    cell=args.cell, progress=show_progress(args))
+                    cell=args.cell, robot=args.robot, learn=args.learn, progress=show_progress(args))
     rec, spec = outcome.record, outcome.spec
     if plot and args.maps_at is not None:  # the same run again, recording the tick nearest T (a run is pure)
         from evaluation.actionmap_plot import record_tick, save_run_with_maps
@@ -82,13 +103,19 @@ def run(args) -> None:
         outcome.save_plot(plot)
     if gif:
         outcome.save_animation(gif)
+    if save_map:
+        outcome.save_map(save_map)
     if args.json:
         print_json(outcome.to_dict())
         return
     out = outcome.to_dict()
     status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
     drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
-    print(f"{rec.world.name}: {spec} (seed {args.seed}{drives})")
+    print(f"{rec.world.name}: {spec} on {out['robot']} (seed {args.seed}{drives})")
+    if out["map_robot"] is not None and out["map_robot"] != out["robot"]:
+        print(f"  note: the map was trained on {out['map_robot']}, not on {out['robot']}")
+    if out["learn"] is not None:
+        print(f"  learning while driving ({out['learn']}): {out['updates']} updates of the map")
     print(f"  {status}: {out['ended']} after {out['time_s']:.1f} s, path {out['path_m']:.2f} m, "
           f"{out['collisions']} collisions, final distance {1000 * out['final_distance_m']:.1f} mm")
     print(f"  checkpoints reached {out['checkpoints_reached']}, replans {out['replans']}, recoveries {out['recoveries']}")
@@ -96,6 +123,6 @@ def run(args) -> None:
     print(f"  motion: command change {out['command_change_mps'] * 1000:.1f} mm/s a tick, angular acceleration "
           f"{out['angular_accel_rms']:.2f} rad/s^2 RMS, stopped {out['stopped_s']:.1f} s, "
           f"{out['turn_reversals_per_m']:.1f} turn reversals per m{ratio}")
-    for path in (plot, gif):
+    for path in (plot, gif, save_map):
         if path:
             print(f"  written to {path}")

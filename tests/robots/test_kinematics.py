@@ -72,3 +72,65 @@ def test_advance_pose_is_advances_new_state():
         np.testing.assert_allclose(np.asarray(end.pose[:, :2]), np.asarray(full.pose[:, :2]), rtol=0, atol=tol)
         np.testing.assert_array_equal(np.asarray(end.pose[:, 2]), np.asarray(full.pose[:, 2]))
         np.testing.assert_array_equal(np.asarray(end.wheels), np.asarray(full.wheels))
+
+
+# ------------------------------------------------------------------------------ robots that differ (issue 32)
+
+def circumradius(p):
+    """Radius of the circle through three points ``(3, 2)`` (the trace of a robot driving an arc)."""
+    a, b, c = (np.linalg.norm(p[i] - p[j]) for i, j in ((0, 1), (1, 2), (2, 0)))
+    cross = (p[1, 0] - p[0, 0]) * (p[2, 1] - p[0, 1]) - (p[1, 1] - p[0, 1]) * (p[2, 0] - p[0, 0])
+    return a * b * c / (2.0 * abs(cross))
+
+
+@pytest.mark.parametrize("simulator", ["kinematics", "pymunk"])
+def test_a_10_percent_smaller_left_wheel_curves_left_on_the_radius_worked_out_by_hand(simulator):
+    """Equal commands c on wheels of gain (0.9, 1): v = 0.95 c, ω = 0.1 c / b, so R = v / ω = 9.5 b = 0.5035 m
+    to the left — whatever c, and through the motor lag too (both wheels follow the same exponential)."""
+    robot = dataclasses.replace(KHEPERA, wheel_gain=(0.9, 1.0), actuator_noise=0.0, speed_unit=0.0)
+    c = np.array([0.1, 0.1])
+    zero = np.zeros(robot.noise_shape(robot.avoid_period))
+    if simulator == "kinematics":
+        state, poses = kinematics.initial_state(np.array([0.5, 0.5, 0.0])), []
+        for _ in range(40):
+            state, trace = kinematics.step(state, c, zero, 8, robot)
+            poses.append(trace)
+        poses = np.concatenate(poses)
+    else:
+        from robots.world import PymunkWorld
+        from robots.worldfile import parse_world
+
+        world = parse_world({"name": "big", "size": [3.0, 3.0], "start": [1.5, 1.0, 0.0], "goal": [2.5, 2.5]})
+        sim = PymunkWorld(world, params=robot)
+        poses = np.concatenate([sim.step(c, zero)[1] for _ in range(40)])
+    # the chords of explicit Euler at 16 ms lie on a circle of radius (v dt / 2) / sin(ω dt / 2) = R to 1e-6
+    assert circumradius(poses[[40, 160, 300], :2]) == pytest.approx(9.5 * 0.053, rel=1e-5)
+    assert poses[-1, 2] > 0.5  # it turned left (counter-clockwise), about 0.1 c / b = 0.19 rad/s for 5.1 s
+
+
+def test_a_motor_that_delivers_80_percent_scales_that_wheel_s_speed_and_nothing_else():
+    robot = dataclasses.replace(KHEPERA, wheel_gain=(1.0, 0.8))
+    noise = np.random.default_rng(3).uniform(-1, 1, (32, 2))
+    wheels, setpoint = np.array([0.05, -0.02]), np.array([0.12, 0.08])
+    v, omega, end = kinematics.motor_twist(wheels, setpoint, noise, 64, robot)
+    v0, omega0, end0 = kinematics.motor_twist(wheels, setpoint, noise, 64, KHEPERA)
+    left, right = v0 - 0.5 * KHEPERA.wheel_base * omega0, v0 + 0.5 * KHEPERA.wheel_base * omega0
+    np.testing.assert_allclose(v, 0.5 * (left + 0.8 * right), atol=1e-15)
+    np.testing.assert_allclose(omega, (0.8 * right - left) / KHEPERA.wheel_base, atol=1e-12)
+    np.testing.assert_array_equal(end, end0)  # the motors are the same; only the wheel turns less
+
+
+def test_repeating_a_motion_is_the_motion_made_for_that_much_longer():
+    """What the learner measures (robots.controllers.learner): one 0.128 s tick repeated 8 times is the 1.024 s
+    the same command makes, to rounding; a straight tick goes 8 times as far; a quarter turn on the spot
+    repeated 4 times comes back."""
+    robot = dataclasses.replace(KHEPERA, actuator_noise=0.0, speed_unit=0.0)
+    for c in ([0.1, 0.12], [-0.05, -0.08], [0.16, 0.02]):
+        start = kinematics.RobotState(np.array([0.3, 0.4, 0.7]), np.array(c))
+        tick, _ = kinematics.advance(start, np.array(c), np.zeros((4, 2)), 8, robot)
+        period, _ = kinematics.advance(start, np.array(c), np.zeros((32, 2)), 64, robot)
+        np.testing.assert_allclose(kinematics.repeated(start.pose, tick.pose, 8),
+                                   kinematics.egocentric(start.pose, period.pose[:2]), atol=1e-12)
+    a = np.array([0.0, 0.0, 0.0])
+    np.testing.assert_allclose(kinematics.repeated(a, np.array([0.02, 0.0, 0.0]), 8), [0.0, 0.16], atol=1e-15)
+    assert kinematics.repeated(a, np.array([0.01, 0.01, np.pi / 2]), 4)[1] == pytest.approx(0.0, abs=1e-15)

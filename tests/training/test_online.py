@@ -18,6 +18,7 @@ from ekm import indirect
 from ekm.config import EKMConfig
 from robots.kinematics import RobotState
 from robots.params import KHEPERA
+from ekm.learning import fresh_trace
 from training.online import TrainConfig, Trainee, draw_noise, next_target, start, train_chunk, train_step
 from training.schedules import Schedule, Schedules
 
@@ -29,7 +30,7 @@ CFG = EKMConfig(neurons=3, forward_init=0.0)  # M_i = 0: c_p = 0 everywhere
 
 def zero_map_trainee(target=(0.9, 0.5), age=0, pose=(0.5, 0.5, 0.0)):
     return Trainee(indirect.init(CFG), RobotState(jnp.asarray(pose, jnp.float32), jnp.zeros(2, jnp.float32)),
-                   jnp.asarray(target, jnp.float32), jnp.asarray(age, jnp.int32))
+                   jnp.asarray(target, jnp.float32), jnp.asarray(age, jnp.int32), fresh_trace())
 
 
 def draws(explore=(0.0, 0.0), target_draw=(0.5, 0.5)):

@@ -15,9 +15,9 @@ def subparsers():
 
 
 def test_every_command_is_listed():
-    assert set(subparsers()) == {"worlds", "plan", "train", "evaluate", "architectures", "run", "compare", "match",
-                                 "tournament", "players", "bench"}
-    assert len(COMMANDS) == 11
+    assert set(subparsers()) == {"worlds", "robots", "plan", "train", "evaluate", "adapt", "architectures", "run",
+                                 "compare", "match", "tournament", "players", "bench"}
+    assert len(COMMANDS) == 13
 
 
 @pytest.mark.parametrize("name", sorted(subparsers()))
@@ -36,7 +36,8 @@ def test_every_command_has_a_description_examples_and_help_on_every_option(name,
 def test_train_usage_shows_what_it_requires_and_run_points_to_the_architectures(capsys):
     with pytest.raises(SystemExit):
         main(["train", "--help"])
-    assert "usage: ekm train (--mapping {direct,indirect} --out MAP.npz | --resume CKPT.npz)" in capsys.readouterr().out
+    assert ("usage: ekm train (--mapping {direct,indirect} | --init MAP.npz) --out MAP.npz [options] | --resume "
+            "CKPT.npz") in " ".join(capsys.readouterr().out.split())
     for name in ("run", "compare"):
         with pytest.raises(SystemExit):
             main([name, "--help"])
