@@ -48,9 +48,9 @@ class Adaptation:
     sigma: float = 0.3  # σ likewise, lattice units (training's final σ)
     eta_max: float = 0.1  # rule=error: η at a prediction error of ``full`` and above
     sigma_max: float = 1.0  # rule=error: σ likewise
-    floor: float = 0.09  # rule=error: relative prediction error ē at which the rates begin to rise
-    full: float = 0.11  # rule=error: ē at which they reach eta_max, sigma_max
-    memory: float = 500.0  # rule=error: learning steps over which ē averages the error
+    floor: float = 0.04  # rule=error: relative prediction error ē at which the rates begin to rise
+    full: float = 0.1  # rule=error: ē at which they reach eta_max, sigma_max
+    memory: float = 50.0  # rule=error: learning steps over which ē averages the error
 
     def __post_init__(self):
         if self.rule not in RULES:

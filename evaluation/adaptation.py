@@ -83,10 +83,18 @@ def _arena_world(maps) -> str:
     return world if isinstance(world, str) else "open-arena"
 
 
-def first_step(curve: list[dict], at_most: float, key: str = "E_mm") -> int | None:
+def first_step(curve: list[dict], at_most: float, key: str = "E_mm", reached: float = 0.9) -> int | None:
     """The first step of ``curve`` at which ``key`` (``E_mm``, or ``T5``/``D25``: T or D at that ε in mm) is at
-    most ``at_most``, and stays so at the next test; None if it never does."""
-    values = [_value(p, key) for p in curve]
+    most ``at_most``, and stays so at the next test; None if it never does. T and D average over the targets
+    reached within ε only, so for them the step also needs P(ε) ≥ ``reached`` (an untrained map that happens to
+    reach two targets quickly has not learned)."""
+    def value(p):
+        v = _value(p, key)
+        if key != "E_mm" and p["P"].get(key[1:], 0.0) < reached:
+            return None
+        return v
+
+    values = [value(p) for p in curve]
     for i, v in enumerate(values):
         if v is not None and v <= at_most and (i + 1 == len(values) or (values[i + 1] or np.inf) <= at_most):
             return int(curve[i]["step"])

@@ -56,7 +56,7 @@ def train(mapping: str | None = None, *, neurons: int | None = None, priority: i
         instead of starting from scratch: their lattice, chart and hyper-parameters are kept, and η and σ follow
         ``rate`` instead of training's decaying schedules.
     rate : str, optional
-        With ``init``: the fine-tuning rule (:mod:`ekm.learning`), ``"constant"`` (default) or ``"error"``,
+        With ``init``: the fine-tuning rule (:mod:`ekm.learning`), ``"error"`` (default) or ``"constant"``,
         with parameters as ``ekm run --learn`` spells them (``"constant:eta=0.05,sigma=1"``).
     until : int, optional
         Stop after this many of the ``steps`` steps, the schedules unchanged: the maps of an early step of a
@@ -142,7 +142,7 @@ def _initial(init, *, mapping, neurons, priority, chart, trials) -> dict:
 
 
 #: The fine-tuning rule of ``ekm train --init`` when none is given (docs/reproduce/adaptation.md).
-DEFAULT_RATE = "constant:eta=0.1,sigma=1"
+DEFAULT_RATE = "error"
 
 
 def _rate(rate) -> str:

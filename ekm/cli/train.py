@@ -44,9 +44,9 @@ def add_parser(sub) -> None:
                    help="go on training these maps instead of starting from scratch (fine-tuning: their lattice, "
                         "chart and trials are kept; --steps defaults to 10000, --eval-every to 1000)")
     p.add_argument("--rate", metavar="RULE",
-                   help="with --init: the fine-tuning rule, constant (default: eta=0.1, sigma=1) or error, with "
-                        "parameters as ekm run --learn spells them (constant:eta=0.005,sigma=0.3: the end of "
-                        "training's schedules)")
+                   help="with --init: the fine-tuning rule, error (default: faster while the map predicts badly) or "
+                        "constant, with parameters as ekm run --learn spells them (constant:eta=0.005,sigma=0.3: "
+                        "the end of training's schedules)")
     p.add_argument("--out", metavar="MAP.npz", help="where to save the trained maps; required")
     p.add_argument("--checkpoint", metavar="CKPT.npz",
                    help="where to keep the checkpoint while training (default: OUT with .checkpoint.npz; "

@@ -135,3 +135,25 @@ def test_sigint_from_the_terminal_ends_training_with_one_line_and_status_130(tmp
     assert proc.returncode == 130 and "Traceback" not in stderr
     assert stderr.startswith("interrupted: training stopped; the checkpoint at step ") and stderr.count("\n") == 1
     assert saved_step(ckpt) and saved_step(ckpt) % 2000 == 0 and not out.exists()
+
+
+def test_a_fine_tuning_run_resumed_ends_as_the_uninterrupted_one(capsys, tmp_path, monkeypatch):
+    """``ekm train --init MAP --robot R`` keeps the same checkpoint and resume guarantees."""
+    assert cli(capsys, *SMALL, "--out", tmp_path / "base.npz")[0] == 0
+    fine = ["train", "--init", tmp_path / "base.npz", "--robot", "weak-motor", "--steps", "2000", "--eval-every", "1000",
+            "--eval-targets", "4", "--json"]
+    code, whole, _ = cli(capsys, *fine, "--out", tmp_path / "whole.npz")
+    assert code == 0
+    with monkeypatch.context() as m:
+        interrupt_at_save(m, 2, during=False)  # the checkpoint at step 1000 is saved, the maps at 2000 are not
+        assert cli(capsys, *fine, "--out", tmp_path / "part.npz")[0] == 130
+    code, resumed, _ = cli(capsys, "train", "--resume", tmp_path / "part.checkpoint.npz", "--json")
+    assert code == 0
+    a, b = load_maps(tmp_path / "whole.npz"), load_maps(tmp_path / "part.npz")
+    for leaf_a, leaf_b in zip(a.ekm, b.ekm):
+        np.testing.assert_array_equal(np.asarray(leaf_a), np.asarray(leaf_b))  # bit for bit
+    assert a.curve == b.curve and json.loads(resumed)["steps"] == 2000
+    assert b.meta["robot"]["name"] == "weak-motor" and b.meta["init"]["robot"] == "khepera"
+    assert b.meta["init"]["rate"] == "error"
+    base = load_maps(tmp_path / "base.npz")
+    assert not np.array_equal(np.asarray(base.ekm.M), np.asarray(b.ekm.M))  # it did learn

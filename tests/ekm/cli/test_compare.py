@@ -94,3 +94,27 @@ def test_results_files_are_refused_in_one_line(cli, tmp_path):
         code, out, err = cli("compare", *argv)
         assert code == 2 and message in err and err.count("\n") == 1, err
     assert results.read_text() == "".join(lines[:2])
+
+
+def test_a_comparison_on_another_robot_with_learning_maps_records_both(capsys, tmp_path):
+    from ekm.cli import main
+
+    results = tmp_path / "r.jsonl"
+    argv = ["compare", "--worlds", "open-arena", "--architectures", "fields,samba", "--trials", "1", "--workers", "1",
+            "--robot", "worn-wheel", "--learn", "--out", str(results)]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "robot: worn-wheel (the maps were trained on khepera); the maps learn while driving (error)" in out
+    lines = [json.loads(line) for line in results.read_text().splitlines()]
+    assert lines[0]["settings"]["robot"]["name"] == "worn-wheel" and lines[0]["settings"]["learn"] == "error"
+    runs = {line["job"]["label"]: line for line in lines[1:]}
+    assert runs["fields"]["job"]["learn"] == "error" and runs["samba"]["job"]["learn"] is None
+    assert runs["fields"]["outcome"]["updates"] > 0 and runs["samba"]["outcome"]["updates"] is None
+    assert {r["outcome"]["robot"] for r in runs.values()} == {"worn-wheel"}
+    assert runs["fields"]["outcome"]["map_robot"] == "khepera" and runs["samba"]["outcome"]["map_robot"] is None
+    same = argv[1:-2]  # the same arguments, without --out
+    assert main(["compare", "--resume", str(results), *same]) == 0  # nothing left to run
+    capsys.readouterr()
+    other = [a if a != "worn-wheel" else "weak-motor" for a in same]
+    assert main(["compare", "--resume", str(results), *other]) == 2
+    assert "other settings" in capsys.readouterr().err

@@ -64,3 +64,31 @@ def test_bad_arguments_give_one_line_and_status_2(cli, tmp_path, monkeypatch, ar
 def test_output_directory_is_refused_before_training(cli, tmp_path):
     code, _, stderr = cli("train", "--mapping", "direct", "--out", tmp_path)
     assert code == 2 and "is a directory" in stderr
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--mapping", "direct"], "--mapping direct: --init "),
+    (["--trials", "3"], "--trials 3: --init "),
+    (["--neurons", "9"], "--neurons 9: --init "),
+])
+def test_fine_tuning_keeps_the_map_s_lattice_and_says_so(cli, trained, extra, message):
+    d, out, _ = trained
+    code, _, err = cli("train", "--init", out, *extra, "--out", d / "x.npz")
+    assert code == 2 and message in err and "fine-tuning keeps the map's" in err and err.count("\n") == 1
+
+
+def test_rate_needs_init_and_a_known_rule(cli, trained):
+    d, out, _ = trained
+    code, _, err = cli("train", "--mapping", "indirect", "--rate", "constant", "--out", d / "x.npz")
+    assert code == 2 and "--rate: the rate of fine-tuning; needs --init MAP.npz" in err
+    code, _, err = cli("train", "--init", out, "--rate", "sometimes", "--out", d / "x.npz")
+    assert code == 2 and "learning rule 'sometimes': unknown" in err
+
+
+def test_a_map_trained_on_one_robot_tested_on_another_says_so(cli, trained):
+    d, out, _ = trained
+    code, stdout, _ = cli("evaluate", out, "--targets", "5", "--robot", "worn-wheel")
+    assert code == 0 and "on worn-wheel; trained on khepera" in stdout
+    code, stdout, _ = cli("evaluate", out, "--targets", "5", "--json")
+    ev = json.loads(stdout)
+    assert ev["robot"] == "khepera" and ev["map_robot"] == "khepera"
