@@ -26,7 +26,7 @@ from typing import Callable
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGES = ("README.md", "docs/reproduce/ch61.md", "docs/reproduce/ch62.md", "docs/reproduce/comparison.md",
-         "docs/reproduce/generalisation.md", "docs/reproduce/discrete.md")
+         "docs/reproduce/generalisation.md", "docs/reproduce/discrete.md", "docs/reproduce/adaptation.md")
 NAMED = ("three-rooms-static", "three-rooms-moving", "three-rooms-changed", "extended-obstacle", "concave-obstacle",
          "three-rooms", "open-arena", "moving-target")
 FIGURES = {"three-rooms-static": "6.3, 6.6", "three-rooms-moving": "6.4", "three-rooms-changed": "6.5",
@@ -36,6 +36,9 @@ THESIS_ARCHITECTURES = "fusion,fusion:sensors=long,period=0.128,fields,fields:fo
 CLAIM_ARCHITECTURES = "fusion,fields,schema,samba,subsumption,damn,deliberation"
 CLAIM_SUITE = "corridor:10,traps:10,clutter:10,maze:10,movers:10,blocked:10"
 LEVELS = "deliberation,deliberation:level=half,deliberation:level=none"
+ROBOTS = ("khepera", "worn-wheel", "weak-motor", "wide-base", "slippery", "e-puck")
+LEARNING = "fusion,fields"  # the architectures whose maps learn with --learn
+STILL = "samba,schema,subsumption,damn,deliberation"  # ... and those that have nothing to learn
 THESIS_HEADS = {"fusion": "fusion, short-range (ch. 6.2.1)",
                 "fusion:sensors=long,period=0.128": "fusion, long-range, 0.128 s (ch. 6.2.2)",
                 "fields": "fields (extended)", "fields:form=thesis": "fields, thesis form"}
@@ -61,12 +64,12 @@ def cached(fn):
             data = json.loads(file.read_text())
         else:
             result = fn()
-            data = result.to_dict() if fn.__name__ == "ch61" else \
+            data = result.to_dict() if fn.__name__ in ("ch61", "adapt_arena") else \
                 {"rows": list(result.rows), "labels": list(result.labels), "families": list(result.families),
                  "overall": list(result.overall)}
             if file:
                 file.write_text(json.dumps(data))
-        return data if fn.__name__ == "ch61" else SimpleNamespace(**data)
+        return data if fn.__name__ in ("ch61", "adapt_arena") else SimpleNamespace(**data)
     return run
 
 
@@ -128,6 +131,43 @@ def claim_levels():
     import ekm
 
     return ekm.compare(suite=CLAIM_SUITE, architectures=LEVELS, trials=1)
+
+
+@cached
+def adapt_arena():
+    """``ekm adapt`` (every named robot; fine-tuned 10,000 steps, from scratch 20,000; seeds 1000)."""
+    import ekm
+
+    return ekm.adapt()
+
+
+def _robot_runs(name: str, robot: str, **where):
+    """``ekm compare … --architectures LEARNING,STILL --robot ROBOT`` and ``… --architectures LEARNING --robot ROBOT
+    --learn`` as one table: the learning runs labelled ``A --learn``."""
+    import ekm
+    from types import SimpleNamespace
+
+    frozen = ekm.compare(architectures=f"{LEARNING},{STILL}", robot=robot, **where)
+    learned = ekm.compare(architectures=LEARNING, robot=robot, learn=True, **where)
+    rows = list(frozen.rows) + [{**r, "architecture": f"{r['architecture']} --learn"} for r in learned.rows]
+    families = list(frozen.families) + [{**r, "architecture": f"{r['architecture']} --learn"} for r in learned.families]
+    return SimpleNamespace(rows=rows, families=families, labels=list(frozen.labels))
+
+
+def _cached_robot(kind: str, robot: str):
+    """The runs of ``robot`` in the named worlds (``kind`` "named": 10 trials) or the claim's suite ("suite"),
+    through the cache like every other command."""
+    import json
+    from types import SimpleNamespace
+
+    file = CACHE / f"adapt_{kind}_{robot}.json" if CACHE else None
+    if file and file.exists():
+        return SimpleNamespace(**json.loads(file.read_text()))
+    where = {"worlds": list(NAMED), "trials": 10} if kind == "named" else {"suite": CLAIM_SUITE, "trials": 1}
+    result = _robot_runs(kind, robot, **where)
+    if file:
+        file.write_text(json.dumps(result.__dict__))
+    return result
 
 
 @cached
@@ -322,6 +362,58 @@ def ch61_table():
                     "| thesis, direct (Webots) | ≈ 8 | | | < 0.9 | | | ≈ 17.5 | | | ≈ 0.18 | |"]
 
 
+def adaptation_table():
+    """Each robot: the frozen, fine-tuned and from-scratch maps' E (95 % interval), T(5), D(25), and the steps to E ≤ 3
+    mm and to the from-scratch map's T(5)."""
+    t = adapt_arena()
+
+    def cell(p):
+        return f"{p['E_mm']:.2f} ({p['E_ci95'][0]:.2f}–{p['E_ci95'][1]:.2f}), {p['T5']:.1f}, {p['D25']:.3f}"
+
+    def steps(pair):
+        return " / ".join("never" if x is None else f"{x:,}" for x in (pair["fine_tuned"], pair["scratch"]))
+
+    lines = ["| robot | frozen: E mm (95 %), T(5), D(25) | fine-tuned, 10,000 steps | from scratch, 20,000 steps | "
+             "steps to E ≤ 3 mm: fine-tuned / scratch | steps to scratch's T(5): fine-tuned / scratch |",
+             "|---|---|---|---|---|---|"]
+    for r in t["robots"]:
+        m = r["summary"]
+        lines.append(f"| `{r['robot']}` | {cell(m['frozen'])} | {cell(m['fine_tuned'])} | {cell(m['scratch'])} | "
+                     f"{steps(m['steps_to_thesis_E'])} | {steps(m['steps_to_scratch_T5'])} |")
+    return lines
+
+
+def _robots_grid(kind: str, key: str) -> list[str]:
+    """Success of every architecture on every robot (``kind``: the named worlds or the claim's suite), the learning
+    architectures frozen and with --learn."""
+    order = [*LEARNING.split(","), *(f"{a} --learn" for a in LEARNING.split(",")), *STILL.split(",")]
+    heads = [f"`{a}`" for a in order]
+    lines = ["| robot | " + " | ".join(heads) + " |", "|---|" + "---|" * len(order)]
+    for robot in ROBOTS:
+        t = _cached_robot(kind, robot)
+        totals = {}
+        for r in (t.rows if kind == "named" else [f for f in t.families if f["family"] == "all"]):
+            k, n = totals.get(r["architecture"], (0, 0))
+            totals[r["architecture"]] = (k + round(r["success_rate"] * r["trials"]), n + r["trials"])
+        from evaluation.compare import wilson
+
+        cells = []
+        for a in order:
+            k, n = totals[a]
+            lo, hi = wilson(k, n)
+            cells.append(f"{k}/{n} ({lo:.2f}–{hi:.2f})")
+        lines.append(f"| `{robot}` | " + " | ".join(cells) + " |")
+    return lines
+
+
+def adaptation_named():
+    return _robots_grid("named", "worlds")
+
+
+def adaptation_suite():
+    return _robots_grid("suite", "families")
+
+
 @dataclass(frozen=True)
 class Table:
     name: str
@@ -333,7 +425,9 @@ TABLES = {t.name: t for t in (
     Table("generalisation", generalisation), Table("generalisation-thesis", generalisation_thesis),
     Table("claim", claim), Table("claim-readme", claim_readme), Table("claim-worlds", claim_worlds),
     Table("claim-smoothness", claim_smoothness),
-    Table("claim-suite", claim_suite_table), Table("claim-families", claim_families), Table("levels", levels))}
+    Table("claim-suite", claim_suite_table), Table("claim-families", claim_families), Table("levels", levels),
+    Table("adaptation", adaptation_table), Table("adaptation-named", adaptation_named),
+    Table("adaptation-suite", adaptation_suite))}
 
 BLOCK = re.compile(r"(<!-- table: (?P<name>[a-z0-9-]+) -->\n)(?P<body>.*?)(<!-- end table -->)", re.S)
 

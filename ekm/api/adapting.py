@@ -80,7 +80,11 @@ def adapt(robots=DEFAULT_ROBOTS, *, maps=None, steps: int = 10_000, every: int =
     progress : bool, default False
         Progress bars on stderr.
 
-    Example: ``ekm.adapt("worn-wheel", steps=2000, scratch_steps=4000).rows[0]["summary"]``.
+    Examples
+    --------
+    ::
+
+        ekm.adapt("worn-wheel", steps=2000, scratch_steps=4000).rows[0]["summary"]
     """
     import time
 
