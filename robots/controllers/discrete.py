@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 
+from ekm.angles import wrap
 from robots.controllers import memory as mem
 from robots.controllers.base import hit_points
 from robots.params import KHEPERA, RobotParams
@@ -32,11 +33,6 @@ def wheels(v, omega, robot: RobotParams = KHEPERA):
     pair = jnp.stack([v - half, v + half]).astype(jnp.float32)
     peak = jnp.max(jnp.abs(pair))
     return pair * jnp.minimum(1.0, robot.max_wheel_speed / jnp.maximum(peak, 1e-12))
-
-
-def wrap(angle):
-    """``angle`` (rad) wrapped into [−π, π)."""
-    return (angle + jnp.pi) % (2.0 * jnp.pi) - jnp.pi
 
 
 def ir_points(readings, angles, radius: float = KHEPERA.radius):

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ekm.angles import wrap
 from robots.geometry import Box, Circle, distance, segment_distance
 from robots.params import KHEPERA
 from robots.worldfile import parse_world
@@ -141,8 +142,11 @@ class Symmetry:
         return [x, y]
 
     def angle(self, a: float) -> float:
+        """``a`` turned with the arena, in [−π, π): the one wrap mirrored (``−wrap(−a)``, the same bits as
+        ``(a + π) mod 2π − π``), as generated worlds have always held their angles — a world is its spelling, and
+        ``maze:7`` must stay the world every results file and table was made in."""
         a = (math.pi - a if self.mirror else a) + self.quarter * math.pi / 2
-        return (a + math.pi) % (2 * math.pi) - math.pi
+        return -wrap(-a)
 
     def shape(self, s: dict, relative: bool = False) -> dict:
         place = self.vector if relative else self.point

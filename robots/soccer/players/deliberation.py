@@ -125,7 +125,8 @@ import jax.numpy as jnp
 
 from robots.controllers.base import Controller, ring
 from robots.controllers.deliberation import drive_to
-from robots.controllers.discrete import bearing, in_the_way, rotate, wheels, wrap
+from ekm.angles import wrap
+from robots.controllers.discrete import bearing, in_the_way, rotate, wheels
 from robots.params import KHEPERA, RobotParams
 from robots.soccer.field import Field
 from robots.soccer.play import Play

@@ -116,6 +116,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
+from ekm.angles import wrap
 from robots.controllers import actionmaps as am
 from robots.controllers import samba as nav
 from robots.controllers.base import Controller, ring, velocity_to_wheels
@@ -311,7 +312,7 @@ def kicks(play: Play, p: SoccerSambaParams, field: Field, robot: RobotParams):
     cross = at[..., 1] + out[..., 1] * jnp.where(forward, flight, 0.0)
     goal = hit & forward & (cross >= y0 + p.aim_margin) & (cross <= y1 - p.aim_margin)
     to_goal = jnp.asarray([field.length, 0.5 * field.width]) - at
-    off = am.wrap(jnp.arctan2(out[..., 1], out[..., 0]) - jnp.arctan2(to_goal[..., 1], to_goal[..., 0]))
+    off = wrap(jnp.arctan2(out[..., 1], out[..., 0]) - jnp.arctan2(to_goal[..., 1], to_goal[..., 0]))
     dribble = hit & (jnp.abs(off) <= p.dribble_sector)
     return t, at, out, flight, goal, dribble
 
@@ -401,7 +402,7 @@ def maps(state: SoccerSambaState, play: Play, p: SoccerSambaParams, field: Field
         speed = nav.forward_speed(direction, speed, chosen, grid)
     direction = jnp.where(mapped, direction, jnp.arctan2(b[1], b[0]))
     speed = jnp.where(mapped, speed, 0.0)
-    heading = jnp.where(mapped, am.wrap(theta + direction), state.heading)
+    heading = jnp.where(mapped, wrap(theta + direction), state.heading)
     return Tick(SoccerSambaState(task, heading), goto_ball, make_goal, dont_kick_opp, dribble, goto_kick, goto_defloc,
                 avoid_opp, avoid_ball, composite, valid, task, i, j, direction, speed, kick, defloc, t_me, t_opp)
 
