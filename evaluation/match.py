@@ -25,6 +25,7 @@ from dataclasses import field as _f
 
 import numpy as np
 
+from evaluation.batch import Batch
 from robots.params import KHEPERA
 from robots.soccer.ball import BallParams
 from robots.soccer.field import Field
@@ -141,6 +142,14 @@ class GameJob:
     rule: str
     field_path: str | None = None
 
+    def identity(self) -> dict:
+        """The game as its results-file line names it (:mod:`evaluation.results`)."""
+        from ekm import __version__
+
+        return {"first": self.first, "second": self.second, "labels": list(self.labels), "pair": list(self.pair),
+                "seed": self.seed, "minutes": self.minutes, "rule": self.rule, "field_path": self.field_path,
+                "ekm_version": __version__}
+
 
 def tournament_jobs(specs, seeds, minutes: float, rule: str = "centre", field_path: str | None = None) -> list[GameJob]:
     """Every pairing ``(i, j)``, ``i <= j`` (self-play included), once per seed in ``seeds``; for ``i < j`` player i
@@ -192,6 +201,11 @@ def game_failed(job: GameJob, reason: str) -> dict:
     return {"players": list(job.labels), "specs": [job.first, job.second], "seed": job.seed, "minutes": job.minutes,
             "rule": job.rule, "goals": None, "winner": None, "goal_times": [], "collisions": None,
             "ball_in_half_s": None, "restarts": None, "pair": list(job.pair), "failed": reason}
+
+
+#: How the batch runner (:mod:`evaluation.batch`) names, keys and fails a tournament's games.
+TOURNAMENT = Batch("tournament", "game", "playing", job_key=job_key, record_key=game_key, identity=GameJob.identity,
+                   failed=game_failed)
 
 
 def _field(path: str):

@@ -4,14 +4,14 @@
 A game is one-on-one Khepera soccer on a field of :mod:`robots.soccer.fieldfile` (default the named field
 ``lci-cup``), refereed by :mod:`robots.soccer.referee`, played by :func:`evaluation.match.play_match`; a tournament
 is the round robin of the LCI Cup (Sahota 1993, ch. 4.3, Table 5): every pair of players, each player against
-itself too, once per seed, sent to workers as ``ekm compare`` sends its runs (:func:`evaluation.compare.compare`,
-:mod:`evaluation.workers`).
+itself too, once per seed, sent to workers as ``ekm compare`` sends its runs (the batch runner,
+:mod:`evaluation.batch`).
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ekm.api.checks import choice, number, whole
@@ -331,8 +331,8 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     """
     import time
 
-    from ekm.api.batch import Batch, run_batch
-    from evaluation.match import game_failed, game_key, job_key, play_job, standings, tournament_jobs
+    from evaluation.batch import run_batch
+    from evaluation.match import TOURNAMENT, play_job, standings, tournament_jobs
     from evaluation.workers import workers_for
     from robots.soccer.fieldfile import load_field
     from robots.soccer.roster import parse_players
@@ -362,11 +362,8 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
         "tournament": [str(s) for s in specs], "labels": labels, "seeds": seeds, "seed": seed, "minutes": minutes,
         "rule": rule, "field": spelling, "ekm_version": _version()}))
     pool = workers_for(play_job, workers, scheduler)
-    batch = Batch("tournament", "game", "playing", job_key=job_key, record_key=game_key,
-                  identity=lambda j: {**asdict(j), "ekm_version": _version()})
     t0 = time.perf_counter()
-    records = run_batch(batch, job_list, pool, settings, out=out, resume=resume, progress=progress,
-                        failed=game_failed)
+    records = run_batch(TOURNAMENT, job_list, pool, settings, out=out, resume=resume, progress=progress)
     seconds = time.perf_counter() - t0
     return TournamentResult(labels=tuple(labels), specs=tuple(str(s) for s in specs), records=tuple(records),
                             standings=tuple(standings(records, labels)), cross_table=tuple(_cross_rows(records, labels)),
