@@ -29,7 +29,9 @@ class Job:
     machine). ``world``: a named world or a world file's path (read by the worker); ``architecture``: the
     full spelling (:class:`robots.controllers.spec.ArchitectureSpec`); ``label``: the spelling the user
     gave; ``map_path``: a map file, or None for the architecture's shipped map; ``keep_path``: return the
-    robot's path too (for the trajectory grid)."""
+    robot's path too (for the trajectory grid); ``added``: what was registered in the parent process
+    (:func:`robots.registry.added_here`: an architecture or a family of a script), for the worker to register
+    too."""
 
     world: str
     architecture: str
@@ -39,7 +41,7 @@ class Job:
     config: ScenarioConfig
     map_path: str | None = None
     keep_path: bool = False
-    added: object = None  # an architecture added in Python (robots.controllers.spec.register): the worker adds it too
+    added: tuple = ()
 
     def identity(self) -> dict:
         """The run as its results-file line names it (:mod:`evaluation.results`)."""
@@ -73,12 +75,12 @@ def run_job(job: Job) -> dict:
     from ekm.errors import InputError
     from ekm.mapfile import load_maps
     from evaluation.scenario import run_architecture
-    from robots.controllers.spec import added, parse_architecture, register
+    from robots.controllers.spec import parse_architecture
+    from robots.registry import adopt
 
     world, family = None, None
     try:
-        if job.added is not None and added(job.added.name) is None:
-            register(job.added)
+        adopt(job.added)
         spec = parse_architecture(job.architecture)
         maps = None
         if job.map_path and spec.uses_map:
@@ -119,10 +121,11 @@ def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path
          keep_paths: bool = False) -> list[Job]:
     """Every (architecture, world, trial) of a comparison, in a fixed order — world by world, so that a worker
     plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``."""
-    from robots.controllers.spec import added
+    from robots.registry import added_here
 
+    added = added_here()
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
-                map_path=map_path, keep_path=keep_paths and i == 0, added=added(spec.name))
+                map_path=map_path, keep_path=keep_paths and i == 0, added=added)
             for w in worlds for i in range(trials) for spec in specs]
 
 

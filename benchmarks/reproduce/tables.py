@@ -239,7 +239,7 @@ def _motion_cell(m, scale, digits) -> str:
 def _motion_table(overall, keys=None) -> list[str]:
     """One line per architecture (its encoding, success over all its runs, each motion measure — those of
     ``keys``, default all — as mean (95 % interval)); the lowest mean of each measure in bold."""
-    from robots.controllers.spec import registry
+    from robots.controllers.spec import ARCHITECTURES
 
     columns = [c for c in MOTION if keys is None or c[0] in keys]
     best = {k: min(r["motion"][k]["mean"] for r in overall if r["motion"][k]["mean"] is not None)
@@ -253,7 +253,7 @@ def _motion_table(overall, keys=None) -> list[str]:
             top = r["motion"][k]["mean"] is not None and round(r["motion"][k]["mean"] * scale, digits) == \
                 round(best[k] * scale, digits)
             cells.append(f"**{cell}**" if top else cell)
-        lines.append(f"| `{r['architecture']}` | {registry()[r['architecture']].encoding} | {_count(r)} | "
+        lines.append(f"| `{r['architecture']}` | {ARCHITECTURES[r['architecture']].encoding} | {_count(r)} | "
                      + " | ".join(cells) + " |")
     return lines
 

@@ -1,5 +1,5 @@
-"""Robot soccer in Python: :func:`match` (``ekm match``), :func:`tournament` (``ekm tournament``), :func:`players`
-(``ekm players``) and :func:`soccer_field` (field files), with their results.
+"""Robot soccer in Python: :func:`match` (``ekm match``), :func:`tournament` (``ekm tournament``) and
+:func:`soccer_field` (field files), with their results (the players: :func:`ekm.players`, :mod:`ekm.api.catalogue`).
 
 A game is one-on-one Khepera soccer on a field of :mod:`robots.soccer.fieldfile` (default the named field
 ``lci-cup``), refereed by :mod:`robots.soccer.referee`, played by :func:`evaluation.match.play_match`; a tournament
@@ -18,8 +18,7 @@ from ekm.api.checks import choice, number, whole
 from ekm.api.result import Result
 from ekm.errors import InputError, Interrupted
 
-__all__ = ["DEFAULT_PLAYERS", "MatchResult", "Players", "TournamentResult", "match", "players", "soccer_field",
-           "tournament"]
+__all__ = ["DEFAULT_PLAYERS", "MatchResult", "TournamentResult", "match", "soccer_field", "tournament"]
 
 _MATCH = "ekm match"
 _TOURNAMENT = "ekm tournament"
@@ -115,7 +114,7 @@ def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 
     Parameters
     ----------
     first, second : str or PlayerSpec
-        The players, spelt ``NAME[:k=v,...]`` (:func:`players` lists them): ``"deliberation:level=half"``.
+        The players, spelt ``NAME[:k=v,...]`` (:func:`ekm.players` lists them): ``"deliberation:level=half"``.
         ``first`` plays side 0 (defends the goal at x = 0); a player may meet itself.
     field : str, path or SoccerField, default "lci-cup"
         A named field or a field file (:mod:`robots.soccer.fieldfile`): the pitch, the ball, the kick-off poses
@@ -375,29 +374,3 @@ def _version() -> str:
     from ekm import __version__
 
     return __version__
-
-
-# ------------------------------------------------------------------------------------------------- the players
-
-@dataclass(frozen=True)
-class Players(Result):
-    """Every soccer player (``ekm players``): ``rows``, each ``{name, summary, parameters}`` with ``parameters``
-    ``[{name, type, default, choices, help}]``. ``to_dict()`` is ``ekm players --json``."""
-
-    rows: tuple
-
-    def _dict(self) -> dict:
-        return {"players": list(self.rows)}
-
-    def names(self) -> list[str]:
-        return [r["name"] for r in self.rows]
-
-
-def players() -> Players:
-    """The soccer players :func:`match` and :func:`tournament` know (:mod:`robots.soccer.roster`), with their
-    parameters, defaults and allowed values."""
-    from robots.controllers.spec import describe_fields
-    from robots.soccer.roster import players as roster
-
-    return Players(rows=tuple({"name": name, "summary": player.summary, "parameters": describe_fields(player.params)}
-                              for name, player in roster().items()))

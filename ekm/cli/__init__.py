@@ -1,7 +1,7 @@
 """The ``ekm`` console script (docs/design.md §6): the imperative shell around the packages.
 
-One module per command, each with ``add_parser(sub)`` and ``run(args)``; shared argument types are in
-:mod:`ekm.cli.args`. Each ``run`` parses nothing more than argparse does, calls the one function of the
+One module per command, each with ``add_parser(sub)`` and ``run(args)`` (the catalogues of what one can add
+share one, :mod:`ekm.cli.catalogue`); shared argument types are in :mod:`ekm.cli.args`. Each ``run`` parses nothing more than argparse does, calls the one function of the
 Python API it wraps (:mod:`ekm.api`: ``ekm train`` is :func:`ekm.train`, …) and prints its result — a
 table, or ``result.to_dict()`` with ``--json`` — or draws it, so the command line and the API cannot
 drift apart (``ekm bench`` alone calls :mod:`training.throughput` directly). Each command imports what it
@@ -14,13 +14,15 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ekm.cli import architectures, bench, compare, evaluate, match, plan, players, run, tournament, train, worlds
+from ekm.cli import bench, compare, evaluate, match, plan, run, tournament, train, worlds
+from ekm.cli.catalogue import ARCHITECTURES, FAMILIES, PLAYERS
 from ekm.cli.args import (finite_float, nonneg_float, nonneg_int, output_path, positive_float, positive_int,
                           print_json, show_progress, xy_point)
 from ekm.errors import InputError, Interrupted
 
-#: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here.
-COMMANDS = (worlds, plan, train, evaluate, architectures, run, compare, match, tournament, players, bench)
+#: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here (a catalogue of a
+#: kind one can add is a :class:`ekm.cli.catalogue.Catalogue`).
+COMMANDS = (worlds, FAMILIES, plan, train, evaluate, ARCHITECTURES, run, compare, match, tournament, PLAYERS, bench)
 
 __all__ = ["COMMANDS", "build_parser", "main", "finite_float", "nonneg_float", "nonneg_int", "output_path",
            "positive_float", "positive_int", "print_json", "show_progress", "xy_point"]

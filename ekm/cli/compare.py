@@ -138,9 +138,9 @@ MOTION_COLUMNS = (("command_change_mps", "change mm/s", 1000.0, 1), ("angular_ac
 def print_motion(rows) -> None:
     """Each architecture over all its runs (:func:`evaluation.compare.by_architecture`): its response encoding,
     success, and each motion measure (:mod:`evaluation.motion`) as mean ± the half-width of its 95 % interval."""
-    from robots.controllers.spec import registry
+    from robots.controllers.spec import ARCHITECTURES
 
-    known = registry()
+    known = ARCHITECTURES.all()
 
     def encoding(label: str) -> str:
         arch = known.get(label.split(":")[0])

@@ -16,7 +16,7 @@ JOB = GameJob("schema", "ekm", ("schema", "ekm"), (0, 1), 0, 0.1, "centre", None
 
 
 def test_the_soccer_functions_are_exported_like_compare():
-    for name in ("match", "MatchResult", "tournament", "TournamentResult", "players", "Players", "soccer_field"):
+    for name in ("match", "MatchResult", "tournament", "TournamentResult", "soccer_field"):
         assert name in ekm.__all__ and getattr(ekm, name).__module__ == "ekm.api.soccer"
     assert ekm.soccer_field() == SoccerField()
 

@@ -15,9 +15,9 @@ def subparsers():
 
 
 def test_every_command_is_listed():
-    assert set(subparsers()) == {"worlds", "plan", "train", "evaluate", "architectures", "run", "compare", "match",
-                                 "tournament", "players", "bench"}
-    assert len(COMMANDS) == 11
+    assert set(subparsers()) == {"worlds", "families", "plan", "train", "evaluate", "architectures", "run", "compare",
+                                 "match", "tournament", "players", "bench"}
+    assert len(COMMANDS) == 12
 
 
 @pytest.mark.parametrize("name", sorted(subparsers()))
