@@ -143,9 +143,8 @@ class RunRecord:
         """The ``ekm run --json`` record: ``world, architecture, reached, time_s, path_m, collisions`` (contact
         episodes), ``checkpoints_reached, replans, trapped, final_distance_m``, then ``contact_s`` (time in
         contact), ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
-        stopped), ``seed``, ``map`` and ``trial`` (which map drove), then how it moved
-        (:mod:`evaluation.motion`: ``command_change_mps, angular_accel_rms, stopped_s, turn_reversals_per_m,
-        path_ratio, stop_distance_m``)."""
+        stopped), ``seed``, ``map`` and ``trial`` (which map drove), then how it moved (each measure of
+        :data:`evaluation.motion.MEASURES`, by key)."""
         return {"world": self.world.name, "architecture": self.architecture, "reached": self.reached,
                 "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
                 "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,

@@ -32,11 +32,10 @@ class Outcome(Result):
     ``checkpoints_reached``, ``replans``, ``trapped`` (the monitor saw no progress), ``final_distance_m``
     to the goal, ``contact_s`` the time spent in contact; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
     stopped), ``seed``, ``map`` and ``trial`` (which map drove; None for architectures without one),
-    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`), and how it moved (:mod:`evaluation.motion`:
-    ``command_change_mps``, ``angular_accel_rms``, ``stopped_s``, ``turn_reversals_per_m``, ``path_ratio``,
-    ``stop_distance_m``). ``record`` holds the traces (poses every
-    sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws the run
-    to scale (Fig. 6.3–6.8).
+    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`), and how it moved: ``motion``, each measure of
+    :data:`evaluation.motion.MEASURES` by key (``outcome.angular_accel_rms`` reads one). ``record`` holds the traces
+    (poses every sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws
+    the run to scale (Fig. 6.3–6.8).
     """
 
     world: str
@@ -59,18 +58,29 @@ class Outcome(Result):
     config: object = field(repr=False)
     record: object = field(repr=False, compare=False)
     spec: object = field(repr=False, compare=False)
-    command_change_mps: float | None = None
-    angular_accel_rms: float | None = None
-    stopped_s: float | None = None
-    turn_reversals_per_m: float | None = None
-    path_ratio: float | None = None
-    stop_distance_m: float | None = None
+    motion: dict = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, rec, config, spec) -> "Outcome":
+        """The outcome of the run ``rec`` (:meth:`evaluation.scenario.RunRecord.outcome`)."""
+        from evaluation.motion import KEYS
+
+        out = rec.outcome()
+        return cls(**{k: v for k, v in out.items() if k not in KEYS}, motion={k: out[k] for k in KEYS},
+                   config=config, record=rec, spec=spec)
+
+    def __getattr__(self, name: str):
+        motion = self.__dict__.get("motion", {})
+        if name in motion:  # a motion measure, by its key
+            return motion[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance
 
-        outcome = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("config", "record", "spec")}
-        return {**outcome, "config": asdict(self.config), **provenance()}
+        outcome = {f.name: getattr(self, f.name) for f in fields(self)
+                   if f.name not in ("config", "record", "spec", "motion")}
+        return {**outcome, **self.motion, "config": asdict(self.config), **provenance()}
 
     def plot(self, ax=None):
         """The run to scale on ``ax`` (a new figure sized to the arena if None): world, path coloured by
@@ -191,4 +201,4 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
     finally:
         if bar is not None:
             bar.close()
-    return Outcome(**rec.outcome(), config=config, record=rec, spec=spec)
+    return Outcome.of(rec, config, spec)

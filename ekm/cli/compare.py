@@ -129,15 +129,11 @@ def print_table(rows) -> None:
                       str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]) for r in rows])
 
 
-#: The motion measures ``--motion`` prints: (key, column head, scale to the unit shown, digits).
-MOTION_COLUMNS = (("command_change_mps", "change mm/s", 1000.0, 1), ("angular_accel_rms", "ang. acc. rad/s2", 1.0, 2),
-                  ("stopped_s", "stopped s", 1.0, 1), ("turn_reversals_per_m", "reversals /m", 1.0, 1),
-                  ("path_ratio", "path/route", 1.0, 2), ("stop_distance_m", "stop mm", 1000.0, 2))
-
-
 def print_motion(rows) -> None:
     """Each architecture over all its runs (:func:`evaluation.compare.by_architecture`): its response encoding,
-    success, and each motion measure (:mod:`evaluation.motion`) as mean ± the half-width of its 95 % interval."""
+    success, and each motion measure (:data:`evaluation.motion.MEASURES`) as mean ± the half-width of its 95 %
+    interval."""
+    from evaluation.motion import MEASURES
     from robots.controllers.spec import ARCHITECTURES
 
     known = ARCHITECTURES.all()
@@ -152,6 +148,6 @@ def print_motion(rows) -> None:
         half = (m["ci95"][1] - m["ci95"][0]) / 2 * scale
         return f"{m['mean'] * scale:.{digits}f} ±{half:.{digits}f}"
 
-    head = ("architecture", "encoding", "runs", "success") + tuple(h for _, h, _, _ in MOTION_COLUMNS)
+    head = ("architecture", "encoding", "runs", "success") + tuple(m.column for m in MEASURES)
     _print([head] + [(r["architecture"], encoding(r["architecture"]), str(r["trials"]), _success(r)[0],
-                      *(cell(r["motion"][k], scale, digits) for k, _, scale, digits in MOTION_COLUMNS)) for r in rows])
+                      *(cell(r["motion"][m.key], m.scale, m.digits) for m in MEASURES)) for r in rows])
