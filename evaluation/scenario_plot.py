@@ -33,7 +33,7 @@ from ekm.errors import InputError
 from ekm.files import atomic_write
 from evaluation.scenario import RunRecord
 from robots.params import KHEPERA
-from robots.plot import STYLE, draw_shape, save_figure
+from robots.plot import STYLE, draw_shape, frame, save_figure
 from robots.worldfile import CirclePath, World
 
 #: Colours of the plans made after the first (event or recovery replans), in order.
@@ -108,17 +108,6 @@ def _new_axes(world: World, width: float, right: float, dpi: float = 100):
     ax_h = ax_w * h / w
     fig = Figure(figsize=(ax_w + 0.8 + right, max(ax_h + 1.2, 3.8)), dpi=dpi, layout="constrained")
     return fig.add_subplot()
-
-
-def _frame_axes(ax, world: World) -> None:
-    """Limits, equal aspect and axis labels for ``world``."""
-    w, h = world.size
-    margin = max(world.wall_thickness, 0.02)
-    ax.set_xlim(-margin, w + margin)
-    ax.set_ylim(-margin, h + margin)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
 
 
 def draw_static(ax, world: World, t: float | None = None) -> dict:
@@ -275,7 +264,7 @@ def draw_run(ax, rec: RunRecord, outline_every: float = 2.0, title: str | None =
         ax.add_line(Line2D(sensed[:, 0], sensed[:, 1], marker=".", markersize=3, color="0.35", alpha=0.7,
                            linestyle="none", zorder=4, label=f"sensed points added to the map ({len(sensed)})"))
 
-    _frame_axes(ax, world)
+    frame(ax, world)
     ax.set_title(title or run_title(rec), fontsize="medium")
     # The legend outside, right of the colorbar (constrained layout makes room for it).
     handles, labels = ax.get_legend_handles_labels()
@@ -356,7 +345,7 @@ def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, s
     ax = _new_axes(world, width=5.0, right=2.0, dpi=dpi)
     fig = ax.figure
     events = draw_static(ax, world, t=0.0)
-    _frame_axes(ax, world)
+    frame(ax, world)
     for i, mover in enumerate(world.moving):
         _draw_mover_path(ax, mover.path, STYLE["moving"]["facecolor"], "moving obstacles' paths" if i == 0 else None,
                          linewidth=0.7)

@@ -151,15 +151,21 @@ def plot_world(world: World, ax=None, t: float = 0.0, sensors: SensorSet | None 
     ax.add_line(Line2D([gx], [gy], marker="*", markersize=14, color="tab:green", markeredgecolor="darkgreen",
                        linestyle="none", label="goal", zorder=5))
 
+    frame(ax, world)
+    ax.set_title(world.name if t == 0 else f"{world.name} at t = {t:g} s")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small", frameon=False)
+    return ax
+
+
+def frame(ax, world: World) -> None:
+    """``ax`` set to ``world``'s arena and its walls (2 cm round it at least), at equal aspect, axes in metres."""
+    w, h = world.size
     margin = max(world.wall_thickness, 0.02)
     ax.set_xlim(-margin, w + margin)
     ax.set_ylim(-margin, h + margin)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(world.name if t == 0 else f"{world.name} at t = {t:g} s")
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small", frameon=False)
-    return ax
 
 
 def save_figure(fig, path: str | os.PathLike, dpi: int = 150) -> Path:
