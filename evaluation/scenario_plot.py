@@ -33,7 +33,7 @@ from ekm.errors import InputError
 from ekm.files import atomic_write
 from evaluation.scenario import RunRecord
 from robots.params import KHEPERA
-from robots.plot import STYLE, draw_shape, frame, save_figure
+from robots.plot import STYLE, draw_fixed, draw_shape, frame, save_figure
 from robots.worldfile import CirclePath, World
 
 #: Colours of the plans made after the first (event or recovery replans), in order.
@@ -111,25 +111,12 @@ def _new_axes(world: World, width: float, right: float, dpi: float = 100):
 
 
 def draw_static(ax, world: World, t: float | None = None) -> dict:
-    """The world's fixed parts: border and walls (with their thickness), known (grey) and unforeseen (red)
-    obstacles, and the shapes events add (hatched, labelled with their time).
+    """The world's fixed parts (:func:`robots.plot.draw_fixed`).
 
     With ``t`` given (the animation), an event's shapes are drawn faintly before ``at_s`` and solid after;
     returns ``{event index: [(patch, at_s), ...]}`` so the caller can restyle them frame by frame.
     """
-    for i, wall in enumerate(world.border + world.walls):
-        draw_shape(ax, wall, STYLE["wall"], "walls" if i == 0 else None, thickness=world.wall_thickness)
-    for group, shapes, label in (("obstacle", world.obstacles, "known obstacles"),
-                                 ("unforeseen", world.unforeseen, "unforeseen obstacles")):
-        for i, shape in enumerate(shapes):
-            draw_shape(ax, shape, STYLE[group], label if i == 0 else None)
-    events = {}
-    for k, event in enumerate(world.events):
-        told = "planner told" if event.known else "unforeseen"
-        before = len(ax.patches)
-        for j, shape in enumerate(event.add):
-            draw_shape(ax, shape, STYLE["event"], f"added at {event.at_s:g} s ({told})" if j == 0 else None)
-        events[k] = [(p, event.at_s) for p in ax.patches[before:]]
+    events = {k: [(p, world.events[k].at_s) for p in patches] for k, patches in draw_fixed(ax, world).items()}
     if t is not None:
         _restyle_events(events, t)
     return events
