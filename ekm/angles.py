@@ -36,8 +36,8 @@ def wrap_once(a):
 
 
 def wrap_near(a):
-    """A JAX array ``a`` wrapped to [−π, π] by rounding — equal to :func:`wrap` except that −π may stay −π. For
-    angle differences that are then squared or taken in absolute value, where that sign does not matter; on
+    """A JAX array ``a`` wrapped to [−π, π] by rounding — equal to :func:`wrap` except that −π may stay −π.
+    For angle differences that are then squared or taken in absolute value, where that sign does not matter; on
     the CPU it is cheaper than :func:`wrap`'s ``mod``."""
     import jax.numpy as jnp
 

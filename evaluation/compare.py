@@ -179,7 +179,8 @@ def motion_summary(rs: list[dict]) -> dict:
     out = {}
     for name in KEYS:
         m, ci = mean_ci([r.get(name) for r in rs])
-        out[name] = {"mean": None if m is None else round(m, 5), "ci95": None if ci is None else [round(x, 5) for x in ci]}
+        out[name] = {"mean": None if m is None else round(m, 5),
+                     "ci95": None if ci is None else [round(x, 5) for x in ci]}
     return out
 
 

@@ -1,11 +1,12 @@
 """The ``ekm`` console script (docs/design.md §6): the imperative shell around the packages.
 
 One module per command, each with ``add_parser(sub)`` and ``run(args)`` (the catalogues of what one can add
-share one, :mod:`ekm.cli.catalogue`); shared argument types are in :mod:`ekm.cli.args`. Each ``run`` parses nothing more than argparse does, calls the one function of the
-Python API it wraps (:mod:`ekm.api`: ``ekm train`` is :func:`ekm.train`, …) and prints its result — a
-table, or ``result.to_dict()`` with ``--json`` — or draws it, so the command line and the API cannot
-drift apart (``ekm bench`` alone calls :mod:`training.throughput` directly). Each command imports what it
-needs inside its function, so ``ekm --help`` starts fast. Bad input of any kind raises :class:`ekm.errors.InputError`; :func:`main` prints its one line on
+share one, :mod:`ekm.cli.catalogue`); shared argument types are in :mod:`ekm.cli.args`. Each ``run`` parses
+nothing more than argparse does, calls the one function of the Python API it wraps (:mod:`ekm.api`: ``ekm
+train`` is :func:`ekm.train`, …) and prints its result — a table, or ``result.to_dict()`` with ``--json`` — or
+draws it, so the command line and the API cannot drift apart (``ekm bench`` alone calls
+:mod:`training.throughput` directly). Each command imports what it needs inside its function, so ``ekm --help``
+starts fast. Bad input of any kind raises :class:`ekm.errors.InputError`; :func:`main` prints its one line on
 stderr and exits with status 2 — never a traceback.
 """
 

@@ -12,8 +12,8 @@ from ekm.api.checks import invalid_choice, output_path, sign_problem
 from ekm.provenance import provenance
 
 __all__ = ["add_batch_options", "command", "finite_float", "in_this_process", "nonneg_float", "nonneg_int", "one_of",
-           "output_path", "positive_float", "positive_int", "print_columns", "print_json", "provenance", "show_progress",
-           "xy_point"]
+           "output_path", "positive_float", "positive_int", "print_columns", "print_json", "provenance",
+           "show_progress", "xy_point"]
 
 
 def command(sub, name: str, summary: str, examples: list[str], *, usage: str | None = None, more: str = ""):

@@ -107,8 +107,9 @@ def _mean(value, digits: int) -> str:
 def print_table(rows) -> None:
     """The comparison as a table: success with its 95 % interval, mean time and path of the successes."""
     head = ("architecture", "world", "success", "95 % interval", "time s", "path m", "trapped", "collisions", "runs")
-    print_columns([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1), _mean(r["mean_path_m"], 2),
-                      str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]) for r in rows])
+    print_columns([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1),
+                             _mean(r["mean_path_m"], 2), str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"])
+                            for r in rows])
 
 
 def print_motion(rows) -> None:

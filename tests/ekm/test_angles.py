@@ -1,5 +1,6 @@
 """The one angle wrap (ekm.angles): (−π, π], the same bits for a Python float, a NumPy array and a JAX array, and
-its two cheaper JAX forms — wrap_once gives wrap's bits on [−2π, 2π], wrap_near wrap's value but for the sign of ±π."""
+its two cheaper JAX forms — wrap_once gives wrap's bits on [−2π, 2π], wrap_near wrap's value but for the sign of
+±π."""
 
 import math
 

@@ -211,8 +211,8 @@ def _past(r, point, direction, tol):
 
 
 def push_path(pose, ball_at, u, p: SoccerDeliberationParams, field: Field, robot: RobotParams):
-    """A push along ``u`` of the ball (to be) at ``ball_at`` (docs/reproduce/soccer.md): (path ``(4, 2)``, first waypoint,
-    expected time to the touch, whether A lies on the field)."""
+    """A push along ``u`` of the ball (to be) at ``ball_at`` (docs/reproduce/soccer.md): (path ``(4, 2)``, first
+    waypoint, expected time to the touch, whether A lies on the field)."""
     r = pose[:2]
     a = ball_at - p.behind * u
     lo, hi = _f32([robot.radius, robot.radius]), _f32([field.length - robot.radius, field.width - robot.radius])
@@ -308,9 +308,9 @@ def deliberate(state: PlayerState, play: Play, p: SoccerDeliberationParams, fiel
 # ------------------------------------------------------------------------------------------ the executor
 
 def defend_point(play: Play, line, p: SoccerDeliberationParams, field: Field, robot: RobotParams):
-    """Defend's point on the line x = ``line`` (docs/reproduce/soccer.md): between the ball and the home net's centre —
-    on the line from one to the other, or, for a ball level with the line or behind it, beside the ball on the
-    net's side (touching distance + ``margin`` from it), in its way along the goal line — or where the ball
+    """Defend's point on the line x = ``line`` (docs/reproduce/soccer.md): between the ball and the home net's
+    centre — on the line from one to the other, or, for a ball level with the line or behind it, beside the ball
+    on the net's side (touching distance + ``margin`` from it), in its way along the goal line — or where the ball
     rolling home will cross the line when that is past the body's end; kept R inside the field."""
     ball, r = _f32(play.ball), _f32(play.pose)[:2]
     bx, by, vx, vy = ball[0], ball[1], ball[2], ball[3]
