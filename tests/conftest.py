@@ -1,6 +1,6 @@
-"""Shared test set-up: how many xdist workers ``-n auto`` starts, every test leaves the process's CPU affinity
-as it found it, the ``registries`` fixture puts back what a test registered (robots.registry), and ``installed``
-installs an example package of ``examples/`` as pip would.
+"""Shared test set-up: how many xdist workers ``-n auto`` starts, one JAX compilation cache for every process of a
+run, every test leaves the process's CPU affinity as it found it, the ``registries`` fixture puts back what a test
+registered (robots.registry), and ``installed`` installs an example package of ``examples/`` as pip would.
 
 ``ekm run`` and ``ekm compare --workers 1`` pin their process to one CPU (:mod:`evaluation.pinning`); tests
 call the CLI in the pytest process — an xdist worker, in the default run — and a pinned worker would hand one
@@ -15,7 +15,15 @@ from pathlib import Path
 
 import pytest
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+
+# One JAX compilation cache for the test processes and every process a test starts (the commands it runs, their
+# worker pools): each would compile the same steps again, and a later run compiles none it has compiled before.
+# It is kept in pytest's own cache directory, which git ignores; set JAX_COMPILATION_CACHE_DIR to keep it elsewhere.
+# A compiled step is the same program whether compiled or read back, so no result depends on it.
+os.environ.setdefault("JAX_COMPILATION_CACHE_DIR", str(ROOT / ".pytest_cache" / "jax"))
+os.environ.setdefault("JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS", "0")
 
 #: ``-n auto`` starts no more workers than this: each worker is a Python with JAX and pymunk loaded (a few hundred
 #: MB) that compiles its own copies of the jitted code.

@@ -2,7 +2,7 @@
 game prints its score, goals and rule and its JSON has every key; a round robin of two players over two seeds is
 3 pairings x 2 = 6 games with its cross table and standings; every bad input is one line and exit status 2 before
 any game starts; a player of one's own — the example package ``examples/chaser``, through its entry point — plays
-in ``ekm tournament`` on worker processes.
+in ``ekm tournament``.
 
 The games here use the ``schema`` and ``ekm`` players (their steps compile once in this test file's process)."""
 
@@ -120,8 +120,9 @@ def test_players_lists_every_player_with_its_parameters(cli):
     assert code == 0 and row["name"] == "schema" and {"drive", "push"} <= {p["name"] for p in row["parameters"]}
 
 
-def test_the_example_package_s_player_is_listed_and_plays_in_a_tournament_on_workers(installed):
-    """As a user runs it after ``pip install ./examples/chaser``: the console script, two worker processes."""
+def test_the_example_package_s_player_is_listed_and_plays_in_a_tournament(installed):
+    """As a user runs it after ``pip install ./examples/chaser``: the console script, its entry point read in the
+    command's process (the worker processes of ``ekm compare`` read theirs in tests/ekm/cli/test_architectures.py)."""
     path = installed("chaser")
     env = {**os.environ, "PYTHONPATH": str(path)}
 
@@ -132,7 +133,7 @@ def test_the_example_package_s_player_is_listed_and_plays_in_a_tournament_on_wor
 
     (row,) = ekm("players", "chaser", "--json")["players"]
     assert row["origin"] == "entry point" and [p["name"] for p in row["parameters"]] == ["speed", "gain"]
-    doc = ekm("tournament", "chaser,schema", "--seeds", "2", "--minutes", "0.1", "--workers", "2", "--json")
+    doc = ekm("tournament", "chaser,schema", "--seeds", "2", "--minutes", "0.1", "--workers", "1", "--json")
     assert doc["players"] == ["chaser", "schema"] and doc["games"] == 6 and "failures" not in doc
     assert sorted(r["player"] for r in doc["standings"]) == ["chaser", "schema"]
 
