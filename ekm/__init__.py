@@ -21,6 +21,8 @@ function                               returns                     command line
 ``generate(family, seed, ...)``        ``World``                   ``ekm worlds --generate``
 ``robot(name_or_path)``                ``RobotParams``             (robot files)
 ``robots(check=None)``                 :class:`Robots`             ``ekm robots``
+``families()``                         :class:`Families`           ``ekm families``
+``register_family(name, ...)``         (a family)                  (entry points: ``ekm.families``)
 ``plan(world, start, goal, ...)``      :class:`Plan`               ``ekm plan``
 ``run(world, architecture, ...)``      :class:`Outcome`            ``ekm run``
 ``compare(worlds, architectures)``     :class:`Table`              ``ekm compare``
@@ -30,6 +32,7 @@ function                               returns                     command line
 ``match(first, second, ...)``          :class:`MatchResult`        ``ekm match``
 ``tournament(players, ...)``           :class:`TournamentResult`   ``ekm tournament``
 ``players()``                          :class:`Players`            ``ekm players``
+``register_player(name, ...)``         (a player)                  (entry points: ``ekm.players``)
 ``soccer_field(name_or_path)``         ``SoccerField``             (field files)
 =====================================  ==========================  ==================================
 
@@ -53,11 +56,13 @@ _EXPORTS = {
     "run": "ekm.api.driving", "Outcome": "ekm.api.driving",
     "adapt": "ekm.api.adapting", "AdaptationTable": "ekm.api.adapting",
     "compare": "ekm.api.comparing", "Table": "ekm.api.comparing", "load_comparison": "ekm.api.comparing",
-    "architectures": "ekm.api.architectures", "Architectures": "ekm.api.architectures",
-    "register_architecture": "ekm.api.architectures", "Architecture": "ekm.api.architectures",
+    "architectures": "ekm.api.catalogue", "Architectures": "ekm.api.catalogue",
+    "register_architecture": "ekm.api.catalogue", "Architecture": "ekm.api.catalogue",
+    "players": "ekm.api.catalogue", "Players": "ekm.api.catalogue", "register_player": "ekm.api.catalogue",
+    "Player": "ekm.api.catalogue", "families": "ekm.api.catalogue", "Families": "ekm.api.catalogue",
+    "register_family": "ekm.api.catalogue", "Family": "ekm.api.catalogue",
     "match": "ekm.api.soccer", "MatchResult": "ekm.api.soccer", "tournament": "ekm.api.soccer",
-    "TournamentResult": "ekm.api.soccer", "players": "ekm.api.soccer", "Players": "ekm.api.soccer",
-    "soccer_field": "ekm.api.soccer",
+    "TournamentResult": "ekm.api.soccer", "soccer_field": "ekm.api.soccer",
     "InputError": "ekm.errors", "Interrupted": "ekm.errors",
 }
 

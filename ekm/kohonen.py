@@ -11,33 +11,8 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
+from ekm.angles import wrap_once
 from ekm.config import EKMConfig
-
-
-def wrap(a):
-    """Wrap angles to (-π, π]."""
-    return jnp.pi - jnp.mod(jnp.pi - a, 2.0 * jnp.pi)
-
-
-def wrap_once(a):
-    """:func:`wrap` for ``a`` in [-2π, 2π] — the difference of two wrapped angles, or a wrapped angle plus
-    at most one turn — bit for bit, without the ``mod``.
-
-    ``mod(x, 2π)`` of x = π - a ∈ [-π, 3π] is x, x - 2π or x + 2π, and each is what ``mod`` returns
-    (x - 2π is exact for x ≥ 2π; x + 2π is the same rounded sum ``mod`` adds). XLA's CPU ``mod`` is much
-    slower than this select. The turn is selected rather than added as a constant so that XLA cannot
-    fold it into π - a (that would round differently).
-    """
-    x = jnp.pi - a
-    turn = 2.0 * jnp.pi
-    return jnp.pi - (x - jnp.where(x >= turn, turn, jnp.where(x < 0.0, -turn, 0.0)))
-
-
-def wrap_near(a):
-    """``a`` wrapped to [-π, π] by rounding — equal to :func:`wrap` except that -π may stay -π. For angle
-    differences that are then squared or taken in absolute value, where that sign does not matter; on the
-    CPU it is cheaper than :func:`wrap`'s ``mod`` (the neural fields evaluate it K × N² times a tick)."""
-    return a - 2.0 * jnp.pi * jnp.round(a / (2.0 * jnp.pi))
 
 
 def initial_weights(cfg: EKMConfig):

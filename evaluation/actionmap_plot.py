@@ -59,8 +59,6 @@ def record_tick(world, spec, at: float, seed: int = 0, config: ScenarioConfig = 
     """Run ``spec`` (Samba) through ``world`` with the controller wrapped to record every tick's (state,
     observation); return the run's :class:`RunRecord` and the :class:`Moment` of the tick nearest ``at`` s
     (the last tick if the run ended before). Raises :class:`InputError` for an architecture without maps."""
-    from robots.controllers import samba
-
     if spec.name != "samba":
         raise InputError(f"--maps-at: architecture {spec.name} has no action maps (only samba has)")
     controller = spec.build()

@@ -7,17 +7,19 @@ worker died, and the results are the same. Trial ``i`` of a comparison started w
 seed ``seed + i`` in every world and for every architecture: the same noise streams for all of them
 (common random numbers), so differences between architectures are not differences of luck.
 
-:func:`compare` submits the runs and collects their outcome records; :func:`summarize` turns them into
-the rows of ``ekm compare`` (docs/design.md §6) with each success rate's 95 % Wilson interval.
+:data:`COMPARISON` hands the runs of :func:`jobs` to the batch runner (:func:`evaluation.batch.run_batch`), whose
+workers call :func:`run_job`; :func:`summarize` turns their records into the rows of ``ekm compare``
+(docs/design.md §6) with each success rate's 95 % Wilson interval.
 """
 
 from __future__ import annotations
 
 import functools
 import math
-import sys
 from dataclasses import dataclass
 
+from evaluation.batch import Batch
+from evaluation.results import key
 from evaluation.scenario import ScenarioConfig
 
 
@@ -27,7 +29,9 @@ class Job:
     machine). ``world``: a named world or a world file's path (read by the worker); ``architecture``: the
     full spelling (:class:`robots.controllers.spec.ArchitectureSpec`); ``label``: the spelling the user
     gave; ``map_path``: a map file, or None for the architecture's shipped map; ``keep_path``: return the
-    robot's path too (for the trajectory grid)."""
+    robot's path too (for the trajectory grid); ``added``: what was registered in the parent process
+    (:func:`robots.registry.added_here`: an architecture or a family of a script), for the worker to register
+    too."""
 
     world: str
     architecture: str
@@ -37,15 +41,23 @@ class Job:
     config: ScenarioConfig
     map_path: str | None = None
     keep_path: bool = False
-    added: object = None  # an architecture added in Python (robots.controllers.spec.register): the worker adds it too
+    added: tuple = ()
     robot: str | None = None  # the robot's file as JSON text (robots.robotfile), None for the Khepera
     learn: str | None = None  # the learning rule of the maps that drive (robots.controllers.learner), None: frozen
 
+    def identity(self) -> dict:
+        """The run as its results-file line names it (:mod:`evaluation.results`)."""
+        from ekm import __version__
+
+        from robots.params import KHEPERA
+
+        robot = _robot(self.robot) or KHEPERA
+        return {"world": self.world, "architecture": self.architecture, "label": self.label, "trial": self.trial,
+                "seed": self.seed, "map": self.map_path, "robot": robot.name, "robot_fingerprint": robot.fingerprint,
+                "learn": self.learn, "ekm_version": __version__}
+
 
 _MAPS: dict = {}
-
-#: A run whose worker died is tried this many more times (on a fresh worker) before it is recorded as failed.
-RETRIES = 3
 
 
 def failed_record(job: Job, reason: str, world: str | None = None, family: str | None = None) -> dict:
@@ -69,12 +81,12 @@ def run_job(job: Job) -> dict:
     from ekm.errors import InputError
     from ekm.mapfile import load_maps
     from evaluation.scenario import run_architecture
-    from robots.controllers.spec import added, parse_architecture, register
+    from robots.controllers.spec import parse_architecture
+    from robots.registry import adopt
 
     world, family = None, None
     try:
-        if job.added is not None and added(job.added.name) is None:
-            register(job.added)
+        adopt(job.added)
         spec = parse_architecture(job.architecture)
         maps = None
         if job.map_path and spec.uses_map:
@@ -135,102 +147,34 @@ def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path
     plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``.
     ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera); ``learn``: the spelling
     of the learning rule of the maps that drive (None: frozen)."""
-    from robots.controllers.spec import added
+    from robots.registry import added_here
 
+    added = added_here()
     document = None
     if robot is not None:
         from robots.robotfile import robot_json
 
         document = robot_json(robot)
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
-                map_path=map_path, keep_path=keep_paths and i == 0, added=added(spec.name), robot=document,
+                map_path=map_path, keep_path=keep_paths and i == 0, added=added, robot=document,
                 learn=learn if spec.uses_map else None)
             for w in worlds for i in range(trials) for spec in specs]
 
 
-def compare(job_list: list[Job], workers=None, on_done=None, *, done: dict | None = None,
-            retries: int = RETRIES, failed=None) -> list[dict]:
-    """Run ``job_list`` on ``workers`` (:mod:`evaluation.workers`; in this process if None) and return their
-    records in the jobs' order, whatever order they finished in.
-
-    ``done``: ``{index: record}`` of runs already made (a resumed comparison): not run again.
-    ``on_done(index, record)`` is called for each run as it finishes (the results file, progress bars).
-    A run whose worker dies is run again on a fresh worker up to ``retries`` times, then recorded as failed
-    with the reason; a run that raises is recorded as failed (:func:`run_job`). Ctrl-C
-    (:mod:`ekm.interrupts`) raises KeyboardInterrupt here, between results; the caller stops the workers.
-    ``failed(job, reason)``: the record of a job that could not be made, for jobs that are not a
-    comparison's :class:`Job` (a soccer game, :func:`evaluation.match.game_failed`); by default
-    :func:`failed_record`, its reason led by the world.
-    """
-    from collections import deque
-    from concurrent.futures import FIRST_COMPLETED, Future, wait
-
-    from ekm import interrupts
-    from evaluation.workers import InProcess
-
-    workers = workers or InProcess(run_job)
-    records: list = [None] * len(job_list)
-    for i, record in (done or {}).items():
-        records[i] = record
-    queue = deque(i for i in range(len(job_list)) if records[i] is None)
-    attempts = [0] * len(job_list)
-    flying: dict = {}
-
-    def finish(i: int, record: dict) -> None:
-        # one copy of each repeated string (world, architecture, label, ending) however many runs arrive
-        records[i] = {k: sys.intern(v) if isinstance(v, str) and k != "failed" else v for k, v in record.items()}
-        if on_done:
-            on_done(i, record)
-
-    def settle(i: int, future) -> bool:
-        """Take a finished future's record, or put its run back in the queue; True if its worker died."""
-        exc = future.exception()
-        if exc is None:
-            finish(i, future.result())
-            return False
-        job = job_list[i]
-        if not workers.lost(exc):
-            reason = f"{type(exc).__name__}: {exc}".splitlines()[0]
-            finish(i, failed(job, reason) if failed else failed_record(job, f"{job.world}: {reason}"))
-            return False
-        attempts[i] += 1
-        if attempts[i] <= retries:
-            queue.appendleft(i)
-        else:
-            reason = f"its worker died {attempts[i]} times ({type(exc).__name__})"
-            finish(i, failed(job, reason) if failed else _lost_record(job, reason))
-        return True
-
-    while queue or flying:
-        interrupts.check()
-        while queue and len(flying) < workers.window:
-            i = queue.popleft()
-            try:
-                flying[workers.submit(job_list[i])] = i
-            except Exception as exc:  # the pool broke while it started a worker
-                if not workers.lost(exc):
-                    raise
-                failed = Future()
-                failed.set_exception(exc)
-                flying[failed] = i
-                break
-        finished, _ = wait(flying, timeout=0.5, return_when=FIRST_COMPLETED)
-        lost = [settle(flying.pop(future), future) for future in finished]
-        if any(lost) and workers.breaks_whole:
-            # a local pool breaks with its worker: every run it had in flight fails too; take them, renew it
-            for future in wait(flying).done:
-                settle(flying.pop(future), future)
-            workers.renew()
-    return records
-
-
-def _lost_record(job: Job, reason: str) -> dict:
-    """A failed record for a run whose worker kept dying (the world read here, for its name and family)."""
+def failed_run(job: Job, reason: str) -> dict:
+    """The record of a run the batch runner could not make (its worker kept dying, or the pool raised), the reason
+    led by the world (read here, for its name and family)."""
     try:
         world = _world(job.world)
         return failed_record(job, f"{job.world}: {reason}", world.name, world_family(world))
     except Exception:
         return failed_record(job, f"{job.world}: {reason}")
+
+
+#: How the batch runner (:mod:`evaluation.batch`) names, keys and fails a comparison's runs.
+COMPARISON = Batch("comparison", "run", "comparing", job_key=lambda j: key(j.world, j.label, j.trial),
+                   record_key=lambda r: key(r["given"], r["label"], r["trial"]), identity=Job.identity,
+                   failed=failed_run)
 
 
 def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
@@ -265,9 +209,10 @@ def motion_summary(rs: list[dict]) -> dict:
     from evaluation.motion import KEYS, mean_ci
 
     out = {}
-    for key in KEYS:
-        m, ci = mean_ci([r.get(key) for r in rs])
-        out[key] = {"mean": None if m is None else round(m, 5), "ci95": None if ci is None else [round(x, 5) for x in ci]}
+    for name in KEYS:
+        m, ci = mean_ci([r.get(name) for r in rs])
+        out[name] = {"mean": None if m is None else round(m, 5),
+                     "ci95": None if ci is None else [round(x, 5) for x in ci]}
     return out
 
 

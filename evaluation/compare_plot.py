@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from robots.plot import STYLE, draw_shape, save_figure
+from robots.plot import STYLE, draw_shape
 
 _COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange", "tab:brown", "tab:pink", "tab:gray")
 
@@ -106,8 +106,3 @@ def _draw_cell(ax, world, record) -> None:
         marker = ("o", "tab:green") if record["reached"] else (("s", "darkorange") if record["trapped"] else ("x", "red"))
         ax.plot(path[-1, 0], path[-1, 1], marker[0], color=marker[1], ms=5, mew=1.5, fillstyle="none")
     ax.set(xlim=(-0.02, w + 0.02), ylim=(-0.02, h + 0.02), aspect="equal", xticks=[], yticks=[])
-
-
-def save_comparison(rows, records, worlds, labels, path) -> None:
-    """Draw :func:`comparison_figure` and write it atomically to ``path``."""
-    save_figure(comparison_figure(rows, records, worlds, labels), path, dpi=110)

@@ -25,6 +25,7 @@ from dataclasses import field as _f
 
 import numpy as np
 
+from evaluation.batch import Batch
 from robots.params import KHEPERA
 from robots.soccer.ball import BallParams
 from robots.soccer.field import Field
@@ -130,7 +131,8 @@ def play_match(first, second, *, field: Field = Field(), ball: BallParams = Ball
 class GameJob:
     """One game of a round robin, as plain values (it pickles to any process or machine): the two players'
     spellings and labels (side 0 first), which pairing (``pair``: indices into the players, row first) and
-    settings; ``field_path``: a field file, or None for the default field."""
+    settings; ``field_path``: a field file, or None for the default field; ``added``: what was registered in the
+    parent process (:func:`robots.registry.added_here`: a player of a script), for the worker to register too."""
 
     first: str
     second: str
@@ -140,11 +142,23 @@ class GameJob:
     minutes: float
     rule: str
     field_path: str | None = None
+    added: tuple = ()
+
+    def identity(self) -> dict:
+        """The game as its results-file line names it (:mod:`evaluation.results`)."""
+        from ekm import __version__
+
+        return {"first": self.first, "second": self.second, "labels": list(self.labels), "pair": list(self.pair),
+                "seed": self.seed, "minutes": self.minutes, "rule": self.rule, "field_path": self.field_path,
+                "ekm_version": __version__}
 
 
 def tournament_jobs(specs, seeds, minutes: float, rule: str = "centre", field_path: str | None = None) -> list[GameJob]:
     """Every pairing ``(i, j)``, ``i <= j`` (self-play included), once per seed in ``seeds``; for ``i < j`` player i
     plays side 0 on even seeds and side 1 on odd ones."""
+    from robots.registry import added_here
+
+    added = added_here()
     jobs = []
     for i, a in enumerate(specs):
         for j in range(i, len(specs)):
@@ -153,7 +167,7 @@ def tournament_jobs(specs, seeds, minutes: float, rule: str = "centre", field_pa
                 swap = i != j and s % 2 == 1
                 one, two = (b, a) if swap else (a, b)
                 jobs.append(GameJob(str(one), str(two), (one.label, two.label), (i, j), int(s), float(minutes), rule,
-                                    field_path))
+                                    field_path, added))
     return jobs
 
 
@@ -161,8 +175,10 @@ def play_job(job: GameJob) -> dict:
     """Play one game of a round robin: its :meth:`MatchRecord.outcome` plus ``pair``; never raises — a game that
     cannot be played is a record with ``failed`` (the reason in one line) and no goals."""
     from ekm.errors import InputError
+    from robots.registry import adopt
 
     try:
+        adopt(job.added)
         field, ball, kickoff = (Field(), BallParams(), None) if job.field_path is None else _field(job.field_path)
         rec = play_match(job.first, job.second, field=field, ball=ball, minutes=job.minutes, seed=job.seed,
                          rule=job.rule, kickoff=kickoff)
@@ -192,6 +208,11 @@ def game_failed(job: GameJob, reason: str) -> dict:
     return {"players": list(job.labels), "specs": [job.first, job.second], "seed": job.seed, "minutes": job.minutes,
             "rule": job.rule, "goals": None, "winner": None, "goal_times": [], "collisions": None,
             "ball_in_half_s": None, "restarts": None, "pair": list(job.pair), "failed": reason}
+
+
+#: How the batch runner (:mod:`evaluation.batch`) names, keys and fails a tournament's games.
+TOURNAMENT = Batch("tournament", "game", "playing", job_key=job_key, record_key=game_key, identity=GameJob.identity,
+                   failed=game_failed)
 
 
 def _field(path: str):

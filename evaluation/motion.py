@@ -3,7 +3,8 @@
 
 Pure functions of a run's traces — the wheel commands sent each tick and the poses — sampled at the tick
 (the controllers' 0.128 s period), so that the physics' 16 ms sub-steps and the 10 % wheel noise within a
-tick do not pass for jerkiness:
+tick do not pass for jerkiness. Each measure is one function of a :class:`Traces` and one line of
+:data:`MEASURES`, which every record, table and command takes its measures from:
 
 - ``command_change_mps``: mean over ticks of |Δ command|, the two wheels averaged (m/s per tick);
 - ``angular_accel_rms``: RMS of the heading's second difference over ticks, (Δω / Δt) (rad/s²);
@@ -20,6 +21,8 @@ tick do not pass for jerkiness:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -32,8 +35,79 @@ AT_GOAL_M = 0.005
 #: Turning slower than this (rad/s) is driving straight: a reversal is counted between turns beyond it.
 TURNING_RADPS = 0.1
 
-KEYS = ("command_change_mps", "angular_accel_rms", "stopped_s", "turn_reversals_per_m", "path_ratio",
-        "stop_distance_m")
+
+@dataclass(frozen=True)
+class Traces:
+    """One run's traces, as every measure reads them: ``commands`` ``(n, 2)`` (m/s, one a tick), ``ticks`` ``(k, 3)``
+    the poses at every tick, ``t`` ``(k,)`` their times, ``omega`` ``(k − 1,)`` the heading rate between ticks
+    (rad/s), ``steps`` ``(k − 1,)`` the distance between ticks (m), ``away`` ``(k − 1,)`` whether the robot was
+    farther than :data:`AT_GOAL_M` from the goal, ``path_m`` the whole path, ``route_m`` the planner's first route,
+    ``stop_m`` the distance from the goal where it stopped (None if it did not stop there), ``period`` the tick."""
+
+    commands: np.ndarray
+    ticks: np.ndarray
+    t: np.ndarray
+    omega: np.ndarray
+    steps: np.ndarray
+    away: np.ndarray
+    path_m: float
+    route_m: float
+    stop_m: float | None
+    period: float
+
+
+def command_change(m: Traces) -> float:
+    return round(float(np.abs(np.diff(m.commands, axis=0)).mean()) if len(m.commands) > 1 else 0.0, 5)
+
+
+def angular_accel(m: Traces) -> float:
+    accel = np.diff(m.omega) / m.period
+    return round(float(np.sqrt(np.mean(accel ** 2))) if len(accel) else 0.0, 4)
+
+
+def stopped(m: Traces) -> float:
+    return round(float(np.sum((m.steps / m.period < STOPPED_MPS) & m.away) * m.period), 3)
+
+
+def turn_reversals(m: Traces) -> float:
+    turning = np.sign(m.omega[np.abs(m.omega) > TURNING_RADPS])
+    reversals = int(np.sum(turning[1:] != turning[:-1])) if len(turning) > 1 else 0
+    return round(reversals / m.path_m, 3) if m.path_m > 0 else 0.0
+
+
+def path_ratio(m: Traces) -> float | None:
+    return round(m.path_m / m.route_m, 4) if m.route_m > 0 else None
+
+
+def stop_distance(m: Traces) -> float | None:
+    return None if m.stop_m is None else round(m.stop_m, 5)
+
+
+@dataclass(frozen=True)
+class Measure:
+    """One measure: its record's ``key`` (its unit last), the ``head`` of its column in the reproduction pages'
+    tables and the ``column`` of ``ekm compare --motion`` (both in the unit shown), the ``scale`` from the key's
+    unit to the one shown, the ``digits`` shown, and the function ``of`` a run's :class:`Traces`."""
+
+    key: str
+    head: str
+    column: str
+    scale: float
+    digits: int
+    of: Callable[[Traces], float | None]
+
+
+#: Every motion measure, in the order records, tables and commands give them.
+MEASURES = (
+    Measure("command_change_mps", "command change (mm/s a tick)", "change mm/s", 1000.0, 1, command_change),
+    Measure("angular_accel_rms", "angular acc. (rad/s², RMS)", "ang. acc. rad/s2", 1.0, 2, angular_accel),
+    Measure("stopped_s", "stopped away from the goal (s)", "stopped s", 1.0, 1, stopped),
+    Measure("turn_reversals_per_m", "turn reversals (/m)", "reversals /m", 1.0, 1, turn_reversals),
+    Measure("path_ratio", "path / route", "path/route", 1.0, 2, path_ratio),
+    Measure("stop_distance_m", "stop distance (mm)", "stop mm", 1000.0, 1, stop_distance),
+)
+
+KEYS = tuple(m.key for m in MEASURES)
 
 
 def at_ticks(times: np.ndarray, poses: np.ndarray, period: float) -> np.ndarray:
@@ -45,32 +119,28 @@ def at_ticks(times: np.ndarray, poses: np.ndarray, period: float) -> np.ndarray:
     return poses[index]
 
 
-def measures(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool) -> dict:
-    """The measures of the module docstring for one run. ``commands``: ``(n, 2)`` wheel commands (m/s), one
-    a tick; ``times`` ``(S,)`` and ``poses`` ``(S, 3)`` the traced poses; ``goal_at(t)`` the goal (x, y) at
-    time t; ``route_m`` the planner's first route; ``arrived`` whether the run stopped at the goal."""
-    c = np.asarray(commands, float).reshape(-1, 2)
-    change = float(np.abs(np.diff(c, axis=0)).mean()) if len(c) > 1 else 0.0
-    ticks = at_ticks(np.asarray(times, float), np.asarray(poses, float), period)
+def traces(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool) -> Traces:
+    """The :class:`Traces` of one run. ``commands``: ``(n, 2)`` wheel commands (m/s), one a tick; ``times`` ``(S,)``
+    and ``poses`` ``(S, 3)`` the traced poses; ``goal_at(t)`` the goal (x, y) at time t; ``route_m`` the planner's
+    first route; ``arrived`` whether the run stopped at the goal."""
+    times, poses = np.asarray(times, float), np.asarray(poses, float)
+    ticks = at_ticks(times, poses, period)
     t = np.asarray(times[0] if len(times) else 0.0) + period * np.arange(len(ticks))
     heading = np.unwrap(ticks[:, 2]) if len(ticks) else np.zeros(0)
-    omega = np.diff(heading) / period
-    accel = np.diff(omega) / period
-    steps = np.linalg.norm(np.diff(ticks[:, :2], axis=0), axis=1)
     goals = np.array([goal_at(s) for s in t[:-1]]).reshape(-1, 2)
     away = np.linalg.norm(ticks[:-1, :2] - goals, axis=1) > AT_GOAL_M if len(goals) else np.zeros(0, bool)
-    stopped = float(np.sum((steps / period < STOPPED_MPS) & away) * period)
-    turning = np.sign(omega[np.abs(omega) > TURNING_RADPS])
-    reversals = int(np.sum(turning[1:] != turning[:-1])) if len(turning) > 1 else 0
-    path = path_length(poses[0], np.asarray(poses, float)[1:, :2]) if len(poses) else 0.0
-    end = np.asarray(poses, float)[-1, :2] if len(poses) else np.zeros(2)
-    return {"command_change_mps": round(change, 5),
-            "angular_accel_rms": round(float(np.sqrt(np.mean(accel ** 2))) if len(accel) else 0.0, 4),
-            "stopped_s": round(stopped, 3),
-            "turn_reversals_per_m": round(reversals / path, 3) if path > 0 else 0.0,
-            "path_ratio": round(path / route_m, 4) if route_m > 0 else None,
-            "stop_distance_m": round(float(np.linalg.norm(end - np.asarray(goal_at(times[-1]), float))), 5)
-            if arrived and len(times) else None}
+    stop = float(np.linalg.norm(poses[-1, :2] - np.asarray(goal_at(times[-1]), float))) \
+        if arrived and len(times) else None
+    return Traces(commands=np.asarray(commands, float).reshape(-1, 2), ticks=ticks, t=t,
+                  omega=np.diff(heading) / period, steps=np.linalg.norm(np.diff(ticks[:, :2], axis=0), axis=1),
+                  away=away, path_m=path_length(poses[0], poses[1:, :2]) if len(poses) else 0.0, route_m=route_m,
+                  stop_m=stop, period=period)
+
+
+def measures(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool) -> dict:
+    """Every measure of :data:`MEASURES` for one run (the arguments: :func:`traces`'), by key."""
+    m = traces(commands, times, poses, period, goal_at, route_m, arrived)
+    return {measure.key: measure.of(m) for measure in MEASURES}
 
 
 def mean_ci(values) -> tuple[float | None, list | None]:

@@ -56,11 +56,6 @@ def figure_6_1_6_2(results: list[dict]) -> Figure:
     return fig
 
 
-def save_figure_6_1_6_2(results: list[dict], path) -> None:
-    """Draw :func:`figure_6_1_6_2` and write it atomically to ``path``."""
-    save_figure(figure_6_1_6_2(results), path, dpi=110)
-
-
 def paths_figure(results: list[dict], arena, *, shown: int = 10) -> Figure:
     """The robot's paths through the first ``shown`` targets of the ch. 6.1 test, one panel per map.
 

@@ -148,9 +148,8 @@ class RunRecord:
         """The ``ekm run --json`` record: ``world, architecture, reached, time_s, path_m, collisions`` (contact
         episodes), ``checkpoints_reached, replans, trapped, final_distance_m``, then ``contact_s`` (time in
         contact), ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
-        stopped), ``seed``, ``map`` and ``trial`` (which map drove), then how it moved
-        (:mod:`evaluation.motion`: ``command_change_mps, angular_accel_rms, stopped_s, turn_reversals_per_m,
-        path_ratio, stop_distance_m``), then the robot (:meth:`robot_record`)."""
+        stopped), ``seed``, ``map`` and ``trial`` (which map drove), then how it moved (each measure of
+        :data:`evaluation.motion.MEASURES`, by key), then the robot (:meth:`robot_record`)."""
         return {"world": self.world.name, "architecture": self.architecture, "reached": self.reached,
                 "time_s": round(self.time_s, 3), "path_m": round(self.path_m, 4), "collisions": self.collisions,
                 "checkpoints_reached": self.checkpoints_reached, "replans": self.replans, "trapped": self.trapped,
@@ -217,13 +216,121 @@ def episode(world: World, body, seed: int = 0, config: ScenarioConfig = Scenario
     ``robot`` (a :class:`Controller` does). Ticks on which recovery turns the robot on the spot are not
     yielded. ``report``, if given, is kept up to date before each yield: ``collisions`` (contact episodes so
     far) and ``route_m`` (m along the plan still to go: to the current checkpoint, then leg by leg to the
-    goal)."""
+    goal).
+
+    A tick is the steps of the module docstring, each a function of the :class:`Course` so far that returns the
+    next one; the physics, the trap monitor and the record being written are the :class:`Shell` they act on."""
+    shell, course = start(world, body, seed, config, spec, on_tick)
+    for tick in range(math.ceil(config.time_limit / shell.period - 1e-9)):
+        t = shell.sim.t
+        course = after_events(shell, course, t)
+        if course.ended:
+            break
+        course = pass_checkpoints(shell, course, t, tick)
+        obs, pose, goal = observe(shell, course, t)
+        if t < course.turn_until and abs(float(obs.target[0])) > config.turn_tolerance:
+            command = _turn_on_the_spot(float(obs.target[0]), shell.robot)  # recovery: face the new route first
+        else:
+            course = replace(course, turn_until=0.0)
+            if report is not None:
+                report.update(collisions=shell.sim.collisions, route_m=course.route_m(pose, goal))
+            command = np.asarray((yield obs), dtype=float)
+        course = stop_at_goal(shell, course, t, pose, goal, command)
+        if course.ended:
+            break
+        course, moved_on = drive(shell, course, t, goal, command)
+        if course.ended:
+            break
+        if not moved_on:
+            course = watch(shell, course)
+            if course.ended:
+                break
+    else:
+        course = replace(course, ended="time limit")
+    return finish(shell, course)
+
+
+@dataclass(frozen=True)
+class Course:
+    """What a run carries from tick to tick, as a value (every step returns a new one): the plan it follows and
+    the checkpoint it heads for (``index``; ``target_id`` changes with every new checkpoint, as the controller
+    sees it), the planner's map (``known``: the world's known shapes and what recovery added) and its padded
+    obstacles (``sight``, for the look past a checkpoint), the time of the last tick (``last_t``: an event since
+    then replans), the contact episodes logged so far, since when the robot has stood within the goal's tolerance
+    (``settled_since``), until when it turns on the spot after a recovery (``turn_until``), the replans and
+    recoveries so far, and how it ended (``ended``: "" while it runs; ``arrived``, ``trapped``)."""
+
+    plan: object
+    known: World
+    sight: object
+    index: int = 0
+    target_id: int = 0
+    last_t: float = 0.0
+    collisions: int = 0
+    settled_since: float | None = None
+    turn_until: float = 0.0
+    replans: int = 0
+    recoveries: int = 0
+    ended: str = ""
+    arrived: bool = False
+    trapped: bool = False
+
+    @property
+    def final(self) -> bool:
+        """Whether the checkpoint it heads for is the goal."""
+        return self.index == len(self.plan.checkpoints) - 1
+
+    def target(self, world: World, t: float) -> np.ndarray:
+        """The point it heads for at ``t``: the checkpoint, or the goal where it is at ``t``."""
+        return np.asarray(world.goal_at(t) if self.final else self.plan.checkpoints[self.index], dtype=float)
+
+    def moved_on(self, by: int = 1) -> "Course":
+        """The course ``by`` checkpoints further on, each a new target for the controller."""
+        return replace(self, index=self.index + by, target_id=self.target_id + by)
+
+    def route_m(self, pose, goal) -> float:
+        """m along the plan still to go from ``pose``: to ``goal`` (the current target), then leg by leg."""
+        legs = self.plan.checkpoints[self.index:]
+        return float(np.linalg.norm(pose[:2] - goal) + np.linalg.norm(np.diff(legs, axis=0), axis=1).sum())
+
+
+@dataclass
+class Shell:
+    """The imperative parts of a run that the steps act on: the world and the robot's ``body`` (its sensors and
+    robot), the pymunk simulation, the trap monitor, the record being written, every tick's sensing on which the
+    IR saw something (``sensed``: (t, pose, readings, markers)) and the pose trace (``poses``, ``times``)."""
+
+    world: World
+    body: object
+    config: ScenarioConfig
+    sim: PymunkWorld
+    monitor: TrapMonitor
+    rec: RunRecord
+    radii: np.ndarray
+    on_tick: object = None
+    sensed: list = field(default_factory=list)
+    poses: list = field(default_factory=list)
+    times: list = field(default_factory=list)
+
+    @property
+    def robot(self):
+        return self.body.robot
+
+    @property
+    def period(self) -> float:
+        return self.body.robot.avoid_period
+
+    def traced(self, t: float, trace) -> None:
+        """Keep the sub-step poses ``trace`` of the period that began at ``t``."""
+        self.poses.extend(trace)
+        self.times.extend(t + self.robot.dt * np.arange(1, len(trace) + 1))
+
+
+def start(world: World, body, seed: int, config: ScenarioConfig, spec: str, on_tick=None) -> tuple[Shell, Course]:
+    """The world, the robot at its start and the first plan (raises :class:`InputError` if there is no route)."""
     robot = body.robot
-    period = robot.avoid_period
     sim = PymunkWorld(world, params=robot, seed=seed)
-    capture = robot.radius if config.capture_radius is None else config.capture_radius
-    rec = RunRecord(world=world, architecture=spec, seed=seed, period=period, robot=robot)
-    known = world  # the planner's map: the world's known shapes (+ what recovery adds)
+    rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
     clear = float(world.clearance(np.asarray(world.start[:2]), 0.0))
     if clear < robot.radius:
         raise InputError(f"{world.name}: the robot {robot.name} (radius {robot.radius:g} m) does not fit at the start "
@@ -231,136 +338,158 @@ def episode(world: World, body, seed: int = 0, config: ScenarioConfig = Scenario
     current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine,
                    padding=robot.radius)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
-    sight = padded_obstacles(world, 0.0, robot.radius)  # the planner's map, for the look past a checkpoint
-    index, target_id = 0, 0
-    monitor = TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground)
-    radii = np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32)
-    poses, times = [sim.pose], [0.0]
-    sensed = []  # (t, pose, readings, markers) of every tick whose IR saw something: RunRecord.hits, made when needed
-    last_t, collisions, settled_since, turn_until = 0.0, 0, None, 0.0
-    ticks = int(math.ceil(config.time_limit / period - 1e-9))
+    shell = Shell(world, body, config, sim, TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground),
+                  rec, np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32), on_tick,
+                  poses=[sim.pose], times=[0.0])
+    return shell, Course(current, world, padded_obstacles(world, 0.0, robot.radius))
 
-    def target_xy(t: float) -> np.ndarray:
-        final = index == len(current.checkpoints) - 1
-        return np.asarray(world.goal_at(t) if final else current.checkpoints[index], dtype=float)
 
-    def replan_from(t: float, reason: str, added=np.zeros((0, 2))) -> bool:
-        nonlocal current, index, target_id, sight
-        try:
-            current = replan(current, known, sim.pose[:2], t, padding=robot.radius, reach=config.start_reach,
-                             refine=config.refine)
-        except InputError:  # NoRouteError included: the change left no way through
-            return False
-        sight = padded_obstacles(known, t, robot.radius)
-        rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
-        rec.replans += 1
-        index, target_id = 0, target_id + 1
-        monitor.reset(t)
-        return True
+def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
+              added=np.zeros((0, 2))) -> Course | None:
+    """The course on a new plan from where the robot is, on the map ``known`` (Fig. 6.5; thesis 7.1.1), its
+    first checkpoint a new target; None if the map leaves no way through."""
+    try:
+        current = replan(course.plan, known, shell.sim.pose[:2], t, padding=shell.robot.radius,
+                         reach=shell.config.start_reach,
+                         refine=shell.config.refine)
+    except InputError:  # NoRouteError included: the change left no way through
+        return None
+    shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
+    shell.monitor.reset(t)
+    return replace(course, plan=current, known=known, sight=padded_obstacles(known, t, shell.robot.radius), index=0,
+                   target_id=course.target_id + 1, replans=course.replans + 1)
 
-    for tick in range(ticks):
-        t = sim.t
-        if map_changed(world, last_t, t) and not replan_from(t, "event"):
-            rec.ended = "no route after a change of the map"
-            break
-        last_t = t
-        # Checkpoints already within reach (two that coincide at a corner, or a replan starting on one), and
-        # with visible checkpoints one the robot is near whose successor it already sees (it cut the corner).
-        while index < len(current.checkpoints) - 1 and (
-                np.linalg.norm(sim.pose[:2] - current.checkpoints[index]) < config.checkpoint_tolerance
-                or (current.rule == "visible" and _sees_next(sim.pose[:2], current, index, config, sight))):
-            rec.checkpoint_log.append((t, *current.checkpoints[index]))
-            index, target_id = index + 1, target_id + 1
-            monitor.reset(t)
-        # ... and, every look_every ticks, a later checkpoint the robot already sees from wherever a detour has
-        # taken it (round a blocked door, say): the checkpoints before it are behind the robot.
-        if current.rule == "visible" and tick % config.look_every == 0 and index < len(current.checkpoints) - 1:
-            later = _seen_later(sim.pose[:2], current, index, config, sight)
-            for j in range(index, later):
-                rec.checkpoint_log.append((t, *current.checkpoints[j]))
-                target_id += 1
-            if later > index:
-                index = later
-                monitor.reset(t)
-        final = index == len(current.checkpoints) - 1
-        goal = target_xy(t)
-        rec.goal_path = np.vstack([rec.goal_path, goal[None]]) if world.moving_goal else rec.goal_path
-        pose = sim.pose
-        ir = sim.sense(body.sensors)
-        markers = _markers(world, sim, t, radii)
-        if np.isfinite(ir).any():
-            sensed.append((t, pose, ir, markers))
-        obs = Observation(
-            t=np.float32(t), ir=ir.astype(np.float32),
-            target=np.asarray(egocentric(pose, goal), np.float32), target_id=np.int32(target_id),
-            final=np.bool_(final), pose=pose.astype(np.float32),
-            target_velocity=np.asarray(world.goal.velocity(t) if (final and world.moving_goal) else (0.0, 0.0),
-                                       np.float32),
-            markers=markers)
-        if t < turn_until and abs(float(obs.target[0])) > config.turn_tolerance:
-            command = _turn_on_the_spot(float(obs.target[0]), robot)  # recovery: face the new route first
-        else:
-            turn_until = 0.0
-            if report is not None:
-                legs = current.checkpoints[index:]
-                report["collisions"] = sim.collisions
-                report["route_m"] = float(np.linalg.norm(pose[:2] - goal)
-                                          + np.linalg.norm(np.diff(legs, axis=0), axis=1).sum())
-            command = np.asarray((yield obs), dtype=float)
-        distance = float(np.linalg.norm(pose[:2] - goal))
-        inside = final and not world.moving_goal and distance < config.checkpoint_tolerance
-        settled_since = (settled_since if settled_since is not None else t) if inside else None
-        if inside and (is_stop_command(command, robot) or t - settled_since >= config.settle_s - 1e-9):
-            sim.step(np.zeros(2), period=period)  # the wheels spin down (motor lag), the robot comes to rest
-            poses.extend(sim.trace)
-            times.extend(t + robot.dt * np.arange(1, len(sim.trace) + 1))
-            rec.arrived, rec.ended = True, "stopped at the goal"
-            rec.checkpoint_log.append((t, *goal))
-            break
-        rec.commands.append((t, float(command[0]), float(command[1])))
-        _, trace = sim.step(command, period=period)
-        poses.extend(trace)
-        times.extend(t + robot.dt * np.arange(1, len(trace) + 1))
-        if sim.collisions > collisions:
-            rec.collision_log.extend([(sim.t, *sim.pose[:2])] * (sim.collisions - collisions))
-            collisions = sim.collisions
-        if on_tick is not None:
-            on_tick(sim.t)
-        if final and world.moving_goal:
-            sub_t = t + robot.dt * np.arange(1, len(trace) + 1)
-            goals = np.array([world.goal_at(s) for s in sub_t])
-            if np.any(caught := np.linalg.norm(trace[:, :2] - goals, axis=1) < capture):
-                rec.arrived, rec.ended = True, "caught the moving goal"
-                j = int(np.argmax(caught))
-                rec.checkpoint_log.append((float(sub_t[j]), *goals[j]))
-                break
-        elif not final and np.any(near := np.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance):
-            rec.checkpoint_log.append((t + robot.dt * (int(np.argmax(near)) + 1), *goal))
-            index, target_id = index + 1, target_id + 1
-            monitor.reset(sim.t)
-            continue
-        if monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - target_xy(sim.t))), sim.pose[:2]):
-            rec.trap_log.append((sim.t, *sim.pose[:2]))
-            if not config.recover or rec.recoveries >= config.max_recoveries:
-                rec.trapped, rec.ended = True, "trapped"
-                break
-            rec.recoveries += 1
-            known, added = with_sensed(known, *sensed_points(sensed, body), config.sensed_radius,
-                                       body.sensors.noise, body.sensors.resolution_m)
-            if not replan_from(sim.t, "recovery", added):
-                rec.trapped, rec.ended = True, "trapped (no route around the sensed obstacle)"
-                break
-            turn_until = sim.t + config.turn_s
-    else:
-        rec.ended = "time limit"
 
-    rec.poses, rec.times = np.asarray(poses), np.asarray(times)
-    rec.hits = _hits(sensed, body)
+def after_events(shell: Shell, course: Course, t: float) -> Course:
+    """Step 1: replan if a known event changed the planner's map since the last tick."""
+    if map_changed(shell.world, course.last_t, t):
+        changed = replanned(shell, course, t, "event", course.known)
+        if changed is None:
+            return replace(course, ended="no route after a change of the map")
+        course = changed
+    return replace(course, last_t=t)
+
+
+def pass_checkpoints(shell: Shell, course: Course, t: float, tick: int) -> Course:
+    """Checkpoints already within reach (two that coincide at a corner, or a replan starting on one), and with
+    visible checkpoints one the robot is near whose successor it already sees (it cut the corner); then, every
+    ``look_every`` ticks, a later checkpoint it already sees from wherever a detour has taken it (round a blocked
+    door, say): the checkpoints before it are behind the robot."""
+    config, position, log = shell.config, shell.sim.pose[:2], shell.rec.checkpoint_log
+    last = len(course.plan.checkpoints) - 1
+    visible = course.plan.rule == "visible"
+    while course.index < last and (
+            np.linalg.norm(position - course.plan.checkpoints[course.index]) < config.checkpoint_tolerance
+            or (visible and _sees_next(position, course.plan, course.index, config, course.sight))):
+        log.append((t, *course.plan.checkpoints[course.index]))
+        course = course.moved_on()
+        shell.monitor.reset(t)
+    if visible and tick % config.look_every == 0 and course.index < last:
+        later = _seen_later(position, course.plan, course.index, config, course.sight)
+        log.extend((t, *course.plan.checkpoints[j]) for j in range(course.index, later))
+        if later > course.index:
+            course = course.moved_on(later - course.index)
+            shell.monitor.reset(t)
+    return course
+
+
+def observe(shell: Shell, course: Course, t: float) -> tuple[Observation, np.ndarray, np.ndarray]:
+    """Step 2: sense, and the controller's :class:`Observation`; with the pose and the target it was made from."""
+    world, sim = shell.world, shell.sim
+    goal = course.target(world, t)
+    if world.moving_goal:
+        shell.rec.goal_path = np.vstack([shell.rec.goal_path, goal[None]])
+    pose = sim.pose
+    ir = sim.sense(shell.body.sensors)
+    markers = _markers(world, sim, t, shell.radii)
+    if np.isfinite(ir).any():
+        shell.sensed.append((t, pose, ir, markers))
+    moving = course.final and world.moving_goal
+    obs = Observation(
+        t=np.float32(t), ir=ir.astype(np.float32),
+        target=np.asarray(egocentric(pose, goal), np.float32), target_id=np.int32(course.target_id),
+        final=np.bool_(course.final), pose=pose.astype(np.float32),
+        target_velocity=np.asarray(world.goal.velocity(t) if moving else (0.0, 0.0), np.float32),
+        markers=markers)
+    return obs, pose, goal
+
+
+def stop_at_goal(shell: Shell, course: Course, t: float, pose, goal, command) -> Course:
+    """Step 4: within the goal's tolerance, a command that rounds to zero (or a robot that has stood there for
+    ``settle_s``) ends the run; the wheels spin down (motor lag) and the robot comes to rest."""
+    config = shell.config
+    inside = (course.final and not shell.world.moving_goal
+              and float(np.linalg.norm(pose[:2] - goal)) < config.checkpoint_tolerance)
+    since = (t if course.settled_since is None else course.settled_since) if inside else None
+    course = replace(course, settled_since=since)
+    if inside and (is_stop_command(command, shell.robot) or t - since >= config.settle_s - 1e-9):
+        shell.sim.step(np.zeros(2), period=shell.period)
+        shell.traced(t, shell.sim.trace)
+        shell.rec.checkpoint_log.append((t, *goal))
+        return replace(course, ended="stopped at the goal", arrived=True)
+    return course
+
+
+def drive(shell: Shell, course: Course, t: float, goal, command) -> tuple[Course, bool]:
+    """Step 3: send the command for one period and read the sub-step trace — new contact episodes, a moving goal
+    caught (under the robot's body), a checkpoint reached (within its tolerance); and whether the robot moved on
+    to the next checkpoint."""
+    sim, rec, robot = shell.sim, shell.rec, shell.robot
+    rec.commands.append((t, float(command[0]), float(command[1])))
+    _, trace = sim.step(command, period=shell.period)
+    shell.traced(t, trace)
+    if sim.collisions > course.collisions:
+        rec.collision_log.extend([(sim.t, *sim.pose[:2])] * (sim.collisions - course.collisions))
+        course = replace(course, collisions=sim.collisions)
+    if shell.on_tick is not None:
+        shell.on_tick(sim.t)
+    sub_t = t + robot.dt * np.arange(1, len(trace) + 1)
+    if course.final and shell.world.moving_goal:
+        capture = robot.radius if shell.config.capture_radius is None else shell.config.capture_radius
+        goals = np.array([shell.world.goal_at(s) for s in sub_t])
+        if np.any(caught := np.linalg.norm(trace[:, :2] - goals, axis=1) < capture):
+            j = int(np.argmax(caught))
+            rec.checkpoint_log.append((float(sub_t[j]), *goals[j]))
+            return replace(course, ended="caught the moving goal", arrived=True), False
+    elif not course.final and np.any(near := np.linalg.norm(trace[:, :2] - goal, axis=1)
+                                     < shell.config.checkpoint_tolerance):
+        rec.checkpoint_log.append((t + robot.dt * (int(np.argmax(near)) + 1), *goal))
+        shell.monitor.reset(sim.t)
+        return course.moved_on(), True
+    return course, False
+
+
+def watch(shell: Shell, course: Course) -> Course:
+    """Step 5: the trap monitor; on a trap, recovery — the sensed obstacle joins the planner's map, the route is
+    replanned round it and the robot turns to face it — or the end of the run."""
+    sim, config = shell.sim, shell.config
+    if not shell.monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - course.target(shell.world, sim.t))),
+                                sim.pose[:2]):
+        return course
+    shell.rec.trap_log.append((sim.t, *sim.pose[:2]))
+    if not config.recover or course.recoveries >= config.max_recoveries:
+        return replace(course, ended="trapped", trapped=True)
+    course = replace(course, recoveries=course.recoveries + 1)
+    known, added = with_sensed(course.known, *sensed_points(shell.sensed, shell.body), config.sensed_radius,
+                               shell.body.sensors.noise, shell.body.sensors.resolution_m)
+    changed = replanned(shell, course, sim.t, "recovery", known, added)
+    if changed is None:
+        return replace(course, ended="trapped (no route around the sensed obstacle)", trapped=True)
+    return replace(changed, turn_until=sim.t + config.turn_s)
+
+
+def finish(shell: Shell, course: Course) -> RunRecord:
+    """The record of the run that ended so: its traces, and the outcome measured on them."""
+    rec, sim = shell.rec, shell.sim
+    rec.ended, rec.arrived, rec.trapped = course.ended, course.arrived, course.trapped
+    rec.replans, rec.recoveries = course.replans, course.recoveries
+    rec.poses, rec.times = np.asarray(shell.poses), np.asarray(shell.times)
+    rec.hits = _hits(shell.sensed, shell.body)
     rec.time_s = float(rec.checkpoint_log[-1][0] if rec.arrived else rec.times[-1])
     rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
     rec.collisions, rec.contact_s = sim.collisions, sim.contact_s
     rec.checkpoints_reached = len(rec.checkpoint_log)
-    rec.final_distance_m = float(np.linalg.norm(sim.pose[:2] - np.asarray(world.goal_at(sim.t))))
+    rec.final_distance_m = float(np.linalg.norm(sim.pose[:2] - np.asarray(shell.world.goal_at(sim.t))))
     rec.reached = rec.arrived and rec.collisions == 0
     return rec
 

@@ -33,7 +33,7 @@ from ekm.errors import InputError
 from ekm.files import atomic_write
 from evaluation.scenario import RunRecord
 from robots.params import KHEPERA
-from robots.plot import STYLE, draw_shape, save_figure
+from robots.plot import STYLE, draw_fixed, draw_shape, frame, save_figure
 from robots.worldfile import CirclePath, World
 
 #: Colours of the plans made after the first (event or recovery replans), in order.
@@ -110,37 +110,13 @@ def _new_axes(world: World, width: float, right: float, dpi: float = 100):
     return fig.add_subplot()
 
 
-def _frame_axes(ax, world: World) -> None:
-    """Limits, equal aspect and axis labels for ``world``."""
-    w, h = world.size
-    margin = max(world.wall_thickness, 0.02)
-    ax.set_xlim(-margin, w + margin)
-    ax.set_ylim(-margin, h + margin)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-
-
 def draw_static(ax, world: World, t: float | None = None) -> dict:
-    """The world's fixed parts: border and walls (with their thickness), known (grey) and unforeseen (red)
-    obstacles, and the shapes events add (hatched, labelled with their time).
+    """The world's fixed parts (:func:`robots.plot.draw_fixed`).
 
     With ``t`` given (the animation), an event's shapes are drawn faintly before ``at_s`` and solid after;
     returns ``{event index: [(patch, at_s), ...]}`` so the caller can restyle them frame by frame.
     """
-    for i, wall in enumerate(world.border + world.walls):
-        draw_shape(ax, wall, STYLE["wall"], "walls" if i == 0 else None, thickness=world.wall_thickness)
-    for group, shapes, label in (("obstacle", world.obstacles, "known obstacles"),
-                                 ("unforeseen", world.unforeseen, "unforeseen obstacles")):
-        for i, shape in enumerate(shapes):
-            draw_shape(ax, shape, STYLE[group], label if i == 0 else None)
-    events = {}
-    for k, event in enumerate(world.events):
-        told = "planner told" if event.known else "unforeseen"
-        before = len(ax.patches)
-        for j, shape in enumerate(event.add):
-            draw_shape(ax, shape, STYLE["event"], f"added at {event.at_s:g} s ({told})" if j == 0 else None)
-        events[k] = [(p, event.at_s) for p in ax.patches[before:]]
+    events = {k: [(p, world.events[k].at_s) for p in patches] for k, patches in draw_fixed(ax, world).items()}
     if t is not None:
         _restyle_events(events, t)
     return events
@@ -275,7 +251,7 @@ def draw_run(ax, rec: RunRecord, outline_every: float = 2.0, title: str | None =
         ax.add_line(Line2D(sensed[:, 0], sensed[:, 1], marker=".", markersize=3, color="0.35", alpha=0.7,
                            linestyle="none", zorder=4, label=f"sensed points added to the map ({len(sensed)})"))
 
-    _frame_axes(ax, world)
+    frame(ax, world)
     ax.set_title(title or run_title(rec), fontsize="medium")
     # The legend outside, right of the colorbar (constrained layout makes room for it).
     handles, labels = ax.get_legend_handles_labels()
@@ -356,7 +332,7 @@ def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, s
     ax = _new_axes(world, width=5.0, right=2.0, dpi=dpi)
     fig = ax.figure
     events = draw_static(ax, world, t=0.0)
-    _frame_axes(ax, world)
+    frame(ax, world)
     for i, mover in enumerate(world.moving):
         _draw_mover_path(ax, mover.path, STYLE["moving"]["facecolor"], "moving obstacles' paths" if i == 0 else None,
                          linewidth=0.7)

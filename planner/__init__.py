@@ -15,7 +15,8 @@ Modules, in pipeline order: :mod:`planner.bitmap` (padded workspace → 0/−1 b
 :mod:`planner.graph` (connectivity graph and shared boundaries), :mod:`planner.checkpoints` (greedy rule,
 ch. 3.2.3), :mod:`planner.search` (A* over (cell, checkpoint) states), :mod:`planner.plan` (the
 pipeline), :mod:`planner.examples` (Fig. 3.3 as data, printer, random workspaces), :mod:`planner.plot`.
-The planner depends on NumPy only (Matplotlib for :mod:`planner.plot`).
+Besides NumPy the planner uses the robot's shapes and radius (:mod:`robots.geometry`, :mod:`robots.params`) and
+the package's one-line errors (:mod:`ekm.errors`); :mod:`planner.plot` draws with Matplotlib (:mod:`robots.plot`).
 """
 
 from planner.plan import (DEFAULT_CELL, METHODS, MIN_CELL, RULES, NoRouteError, Plan, decompose, map_changed, plan,

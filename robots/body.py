@@ -38,6 +38,7 @@ import math
 import numpy as np
 import pymunk
 
+from ekm.angles import wrap
 from robots import kinematics
 from robots.kinematics import RobotState
 from robots.params import KHEPERA, RobotParams, SensorSet
@@ -275,13 +276,6 @@ class RobotBody:
             xi = np.asarray(noise, dtype=float)
             xi = finite(np.full(m, xi) if xi.ndim == 0 else xi, m, "sense: noise")
         return ir_readings(self.ranges(sensors), xi, sensors)
-
-
-def wrap(a: float) -> float:
-    """:func:`robots.kinematics.wrap_angle` of one float, without NumPy's per-call cost: Python's float ``%``
-    is NumPy's ``mod`` for float64 (both take C's ``fmod`` and move the result to the divisor's sign), so
-    the value is the same to the bit."""
-    return math.pi - (math.pi - a) % (2.0 * math.pi)
 
 
 def finite(value, shape, where: str) -> np.ndarray:

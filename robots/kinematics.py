@@ -28,6 +28,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ekm.angles import wrap
 from robots.params import KHEPERA, RobotParams
 from robots.trig import sincos
 
@@ -113,7 +114,7 @@ def advance(state: RobotState, setpoint, noise, n: int, params: RobotParams = KH
     dx, dy, heading, wheels = _substeps(state, setpoint, noise, n, params, xp, lambda a: (xp.sin(a), xp.cos(a)))
     x = state.pose[..., 0:1] + xp.cumsum(dx, axis=-1)
     y = state.pose[..., 1:2] + xp.cumsum(dy, axis=-1)
-    trace = xp.stack([x, y, wrap_angle(heading, xp)], axis=-1)
+    trace = xp.stack([x, y, wrap(heading)], axis=-1)
     return RobotState(pose=trace[..., -1, :], wheels=wheels), trace
 
 
@@ -127,7 +128,7 @@ def advance_pose(state: RobotState, setpoint, noise, n: int, params: RobotParams
     # cosines) once for each.
     shift = xp.sum(xp.stack([dx, dy], axis=-2), axis=-1)
     pose = xp.stack([state.pose[..., 0] + shift[..., 0], state.pose[..., 1] + shift[..., 1],
-                     wrap_angle(heading[..., -1], xp)], axis=-1)
+                     wrap(heading[..., -1])], axis=-1)
     return RobotState(pose=pose, wheels=wheels)
 
 
@@ -147,11 +148,6 @@ def step(state: RobotState, command, noise, n: int, params: RobotParams = KHEPER
     return advance(state, quantize_command(command, params, xp), noise, n, params, xp)
 
 
-def wrap_angle(a, xp=np):
-    """Wrap angles to (-π, π]."""
-    return xp.pi - xp.mod(xp.pi - a, 2.0 * xp.pi)
-
-
 def repeated(start, end, times: int, xp=np):
     """Where a robot that moved from pose ``start`` to pose ``end`` ``(..., 3)`` would be had it made the same
     motion ``times`` times in a row, each turned by the heading change of the one before — seen from ``start``
@@ -162,7 +158,7 @@ def repeated(start, end, times: int, xp=np):
     times Σ_{k<times} e^{i k φ} (a circular arc, sampled as the simulators integrate it). How its wheels make
     that motion — gains, base, speed limit — does not enter.
     """
-    phi = wrap_angle(end[..., 2] - start[..., 2], xp)
+    phi = wrap(end[..., 2] - start[..., 2])
     dx, dy = end[..., 0] - start[..., 0], end[..., 1] - start[..., 1]
     c, s = xp.cos(start[..., 2]), xp.sin(start[..., 2])
     ahead, left = c * dx + s * dy, -s * dx + c * dy  # the first chord in the start frame
@@ -180,5 +176,5 @@ def egocentric(pose, point, xp=np):
     """
     dx = point[..., 0] - pose[..., 0]
     dy = point[..., 1] - pose[..., 1]
-    alpha = wrap_angle(xp.arctan2(dy, dx) - pose[..., 2], xp)
+    alpha = wrap(xp.arctan2(dy, dx) - pose[..., 2])
     return xp.stack([alpha, xp.hypot(dx, dy)], axis=-1)

@@ -129,16 +129,7 @@ def plot_world(world: World, ax=None, t: float = 0.0, sensors: SensorSet | None 
         width = 7.0
         ax = Figure(figsize=(width + 2.8, width * h / w + 0.8), layout="constrained").add_subplot()
 
-    for i, wall in enumerate(world.border + world.walls):
-        draw_shape(ax, wall, STYLE["wall"], "walls" if i == 0 else None, thickness=world.wall_thickness)
-    for group, shapes, label in (("obstacle", world.obstacles, "known obstacles"),
-                                 ("unforeseen", world.unforeseen, "unforeseen obstacles")):
-        for i, shape in enumerate(shapes):
-            draw_shape(ax, shape, STYLE[group], label if i == 0 else None)
-    for event in world.events:
-        told = "planner told" if event.known else "unforeseen"
-        for j, shape in enumerate(event.add):
-            draw_shape(ax, shape, STYLE["event"], f"added at {event.at_s:g} s ({told})" if j == 0 else None)
+    draw_fixed(ax, world)
     for i, mover in enumerate(world.moving):
         color = STYLE["moving"]["facecolor"]
         draw_shape(ax, mover.at(t), STYLE["moving"], "moving obstacles" if i == 0 else None)
@@ -151,15 +142,41 @@ def plot_world(world: World, ax=None, t: float = 0.0, sensors: SensorSet | None 
     ax.add_line(Line2D([gx], [gy], marker="*", markersize=14, color="tab:green", markeredgecolor="darkgreen",
                        linestyle="none", label="goal", zorder=5))
 
+    frame(ax, world)
+    ax.set_title(world.name if t == 0 else f"{world.name} at t = {t:g} s")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small", frameon=False)
+    return ax
+
+
+def draw_fixed(ax, world: World) -> dict:
+    """The world's fixed parts on ``ax``: border and walls (with their thickness), known (grey) and unforeseen (red)
+    obstacles, and the shapes events add (hatched, labelled with their time); returns each event's patches,
+    ``{event index: [patch, …]}``."""
+    for i, wall in enumerate(world.border + world.walls):
+        draw_shape(ax, wall, STYLE["wall"], "walls" if i == 0 else None, thickness=world.wall_thickness)
+    for group, shapes, label in (("obstacle", world.obstacles, "known obstacles"),
+                                 ("unforeseen", world.unforeseen, "unforeseen obstacles")):
+        for i, shape in enumerate(shapes):
+            draw_shape(ax, shape, STYLE[group], label if i == 0 else None)
+    events = {}
+    for k, event in enumerate(world.events):
+        told = "planner told" if event.known else "unforeseen"
+        before = len(ax.patches)
+        for j, shape in enumerate(event.add):
+            draw_shape(ax, shape, STYLE["event"], f"added at {event.at_s:g} s ({told})" if j == 0 else None)
+        events[k] = list(ax.patches[before:])
+    return events
+
+
+def frame(ax, world: World) -> None:
+    """``ax`` set to ``world``'s arena and its walls (2 cm round it at least), at equal aspect, axes in metres."""
+    w, h = world.size
     margin = max(world.wall_thickness, 0.02)
     ax.set_xlim(-margin, w + margin)
     ax.set_ylim(-margin, h + margin)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(world.name if t == 0 else f"{world.name} at t = {t:g} s")
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small", frameon=False)
-    return ax
 
 
 def save_figure(fig, path: str | os.PathLike, dpi: int = 150) -> Path:

@@ -29,7 +29,8 @@ import numpy as np
 import pymunk
 from pymunk.autogeometry import convex_decomposition
 
-from robots.body import SLOP, RobotBody, wrap
+from ekm.angles import wrap
+from robots.body import SLOP, RobotBody
 from robots.geometry import Box, Circle, Polygon, Segment, Shape, distance, signed_area
 from robots.kinematics import RobotState
 from robots.params import KHEPERA, RobotParams, SensorSet

@@ -10,18 +10,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from ekm.angles import wrap
 from ekm.config import EKMConfig
 from robots.kinematics import RobotState, advance, egocentric, is_stop_command, quantize_command
 from robots.params import KHEPERA, RobotParams
 
 
-def _wrap(a):
-    return np.pi - np.mod(np.pi - a, 2.0 * np.pi)
-
-
 def winner(w, u, cfg: EKMConfig) -> int:
     """Eq. 4.2–4.4: among the ``priority`` neurons of most similar angle, the one nearest by Eq. 4.3."""
-    dalpha = np.abs(_wrap(u[0] - w[:, 0]))
+    dalpha = np.abs(wrap(u[0] - w[:, 0]))
     kth = np.sort(dalpha)[cfg.a_size - 1]
     d2 = cfg.gamma_alpha * (dalpha / np.pi) ** 2 + cfg.gamma_d * ((u[1] - w[:, 1]) / cfg.d_scale) ** 2
     d2[dalpha > kth] = np.inf
@@ -43,7 +40,7 @@ def _local(u, w, cfg: EKMConfig):
     ``cfg.chart`` "polar": (α, d), α unwrapped next to w_i; "signed": (α, d) ahead, (α ∓ π, -d) behind.
     """
     if cfg.chart == "polar":
-        alpha = w[..., 0] + _wrap(u[0] - w[..., 0])
+        alpha = w[..., 0] + wrap(u[0] - w[..., 0])
         d = u[1]
     else:
         behind = abs(u[0]) > np.pi / 2
@@ -73,7 +70,7 @@ def update(mapping: str, w, out, v, c_p, eta: float, sigma: float, cfg: EKMConfi
         err = c_p - np.einsum("nij,nj->ni", out, v_loc)
         new_out = out + eta * g[:, None, None] * np.einsum("ni,nj->nij", err, v_loc)
     new_w = w.copy()
-    new_w[:, 0] = _wrap(w[:, 0] + eta * g * _wrap(v[0] - w[:, 0]))
+    new_w[:, 0] = wrap(w[:, 0] + eta * g * wrap(v[0] - w[:, 0]))
     new_w[:, 1] = w[:, 1] + eta * g * (v[1] - w[:, 1])
     return new_w, new_out
 

@@ -44,7 +44,7 @@ from ekm import indirect
 from ekm.kohonen import neighbourhood, winner
 from robots.kinematics import advance_pose, egocentric, quantize_command
 from robots.params import KHEPERA
-from training.online import TrainConfig, Trainee, draw_noise, start, train_chunk, train_step
+from training.online import TrainConfig, Trainee, draw_noise, start, train_chunk
 
 
 def variant_step(s: Trainee, draws, t, cfg, tcfg, params, parts: frozenset):

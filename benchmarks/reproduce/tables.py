@@ -260,15 +260,6 @@ def generalisation_thesis():
                  collisions=True)
 
 
-#: The motion columns of the claim's tables: (key, head, scale to the unit shown, digits).
-MOTION = (("command_change_mps", "command change (mm/s a tick)", 1000.0, 1),
-          ("angular_accel_rms", "angular acc. (rad/s², RMS)", 1.0, 2),
-          ("stopped_s", "stopped away from the goal (s)", 1.0, 1),
-          ("turn_reversals_per_m", "turn reversals (/m)", 1.0, 1),
-          ("path_ratio", "path / route", 1.0, 2),
-          ("stop_distance_m", "stop distance (mm)", 1000.0, 1))
-
-
 def _motion_cell(m, scale, digits) -> str:
     if m["mean"] is None:
         return ""
@@ -279,21 +270,22 @@ def _motion_cell(m, scale, digits) -> str:
 def _motion_table(overall, keys=None) -> list[str]:
     """One line per architecture (its encoding, success over all its runs, each motion measure — those of
     ``keys``, default all — as mean (95 % interval)); the lowest mean of each measure in bold."""
-    from robots.controllers.spec import registry
+    from evaluation.motion import MEASURES
+    from robots.controllers.spec import ARCHITECTURES
 
-    columns = [c for c in MOTION if keys is None or c[0] in keys]
-    best = {k: min(r["motion"][k]["mean"] for r in overall if r["motion"][k]["mean"] is not None)
-            for k, *_ in columns}
-    lines = ["| architecture | encoding | success | " + " | ".join(h for _, h, *_ in columns) + " |",
+    columns = [m for m in MEASURES if keys is None or m.key in keys]
+    best = {m.key: min(r["motion"][m.key]["mean"] for r in overall if r["motion"][m.key]["mean"] is not None)
+            for m in columns}
+    lines = ["| architecture | encoding | success | " + " | ".join(m.head for m in columns) + " |",
              "|---|---|---|" + "---|" * len(columns)]
     for r in overall:
         cells = []
-        for k, _, scale, digits in columns:
-            cell = _motion_cell(r["motion"][k], scale, digits)
-            top = r["motion"][k]["mean"] is not None and round(r["motion"][k]["mean"] * scale, digits) == \
-                round(best[k] * scale, digits)
+        for m in columns:
+            cell = _motion_cell(r["motion"][m.key], m.scale, m.digits)
+            top = r["motion"][m.key]["mean"] is not None and round(r["motion"][m.key]["mean"] * m.scale, m.digits) \
+                == round(best[m.key] * m.scale, m.digits)
             cells.append(f"**{cell}**" if top else cell)
-        lines.append(f"| `{r['architecture']}` | {registry()[r['architecture']].encoding} | {_count(r)} | "
+        lines.append(f"| `{r['architecture']}` | {ARCHITECTURES[r['architecture']].encoding} | {_count(r)} | "
                      + " | ".join(cells) + " |")
     return lines
 

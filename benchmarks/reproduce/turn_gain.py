@@ -24,8 +24,9 @@ import jax.numpy as jnp
 import numpy as np
 
 from ekm import maps
+from ekm.angles import wrap
 from ekm.mapfile import load_maps
-from robots.kinematics import RobotState, advance, egocentric, quantize_command, wrap_angle
+from robots.kinematics import RobotState, advance, egocentric, quantize_command
 from robots.params import KHEPERA as P
 
 BEARINGS = (0.2, 0.4, 0.6, 0.8, 1.0, 1.2)  # rad off the line of travel
@@ -46,7 +47,7 @@ def turn_gains(control, back: bool) -> np.ndarray:
         return egocentric(moved.pose, target, jnp)[0]
 
     after = jax.jit(jax.vmap(one))(targets)
-    off_after = wrap_angle(after - (jnp.pi if back else 0.0), jnp)
+    off_after = wrap(after - (jnp.pi if back else 0.0))
     g = np.asarray((off - off_after) / off)
     k = len(BEARINGS)
     return 0.5 * (g[:k] + g[k:])  # mean of the left and right target

@@ -194,9 +194,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
 
     from ekm.api.worlds import world as load_world
     from ekm.api.driving import scenario_config
-    from ekm.api.batch import Batch, run_batch
-    from evaluation.compare import by_architecture, by_family, jobs, run_job, summarize
-    from evaluation.results import key
+    from evaluation.batch import run_batch
+    from evaluation.compare import COMPARISON, by_architecture, by_family, jobs, run_job, summarize
     from evaluation.workers import workers_for
     from robots.controllers.spec import parse_architectures
 
@@ -235,10 +234,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
         "config": asdict(config), "map": map_path, "robot": {"name": robot.name, "fingerprint": robot.fingerprint},
         "learn": learning, "ekm_version": _version()}))
     pool = workers_for(run_job, workers, scheduler)
-    batch = Batch("comparison", "run", "comparing", job_key=lambda j: key(j.world, j.label, j.trial),
-                  identity=lambda j: _identity(j, map_path, robot))
     t0 = time.perf_counter()
-    records = run_batch(batch, job_list, pool, settings, out=out, resume=resume, progress=progress)
+    records = run_batch(COMPARISON, job_list, pool, settings, out=out, resume=resume, progress=progress)
     seconds = time.perf_counter() - t0
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
                  trials=trials, seed=seed, seconds=seconds, workers=pool.where, config=config,
@@ -279,13 +276,6 @@ def _version() -> str:
     from ekm import __version__
 
     return __version__
-
-
-def _identity(job, map_path, robot) -> dict:
-    """A run's job as the results file names it."""
-    return {"world": job.world, "architecture": job.architecture, "label": job.label, "trial": job.trial,
-            "seed": job.seed, "map": map_path, "robot": robot.name, "robot_fingerprint": robot.fingerprint,
-            "learn": job.learn, "ekm_version": _version()}
 
 
 def _map_path(maps, specs) -> str | None:

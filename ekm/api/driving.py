@@ -32,11 +32,10 @@ class Outcome(Result):
     ``checkpoints_reached``, ``replans``, ``trapped`` (the monitor saw no progress), ``final_distance_m``
     to the goal, ``contact_s`` the time spent in contact; ``arrived`` (stopped at the goal, collisions or not), ``recoveries``, ``ended`` (why the run
     stopped), ``seed``, ``map`` and ``trial`` (which map drove; None for architectures without one),
-    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`), and how it moved (:mod:`evaluation.motion`:
-    ``command_change_mps``, ``angular_accel_rms``, ``stopped_s``, ``turn_reversals_per_m``, ``path_ratio``,
-    ``stop_distance_m``). ``record`` holds the traces (poses every
-    sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws the run
-    to scale (Fig. 6.3–6.8).
+    ``config`` (the :class:`evaluation.scenario.ScenarioConfig`), and how it moved: ``motion``, each measure of
+    :data:`evaluation.motion.MEASURES` by key (``outcome.angular_accel_rms`` reads one). ``record`` holds the traces
+    (poses every sub-step, commands, plans, sensed points). ``to_dict()`` is ``ekm run --json``; ``plot()`` draws
+    the run to scale (Fig. 6.3–6.8).
     """
 
     world: str
@@ -61,16 +60,27 @@ class Outcome(Result):
     spec: object = field(repr=False, compare=False)
     spec_maps: object = field(repr=False, compare=False, default=None)  # the maps that drove (None: none)
     learn_spelling: str | None = field(repr=False, compare=False, default=None)  # the learning rule, if any
-    command_change_mps: float | None = None
-    angular_accel_rms: float | None = None
-    stopped_s: float | None = None
-    turn_reversals_per_m: float | None = None
-    path_ratio: float | None = None
-    stop_distance_m: float | None = None
     robot: str = "khepera"
     robot_fingerprint: str = ""
     map_robot: str | None = None
     updates: int | None = None
+    motion: dict = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, rec, config, spec, maps=None, learn_spelling: str | None = None) -> "Outcome":
+        """The outcome of the run ``rec`` (:meth:`evaluation.scenario.RunRecord.outcome`); ``maps`` drove it,
+        learning by the rule ``learn_spelling`` (None: frozen)."""
+        from evaluation.motion import KEYS
+
+        out = rec.outcome()
+        return cls(**{k: v for k, v in out.items() if k not in KEYS}, motion={k: out[k] for k in KEYS},
+                   config=config, record=rec, spec=spec, spec_maps=maps, learn_spelling=learn_spelling)
+
+    def __getattr__(self, name: str):
+        motion = self.__dict__.get("motion", {})
+        if name in motion:  # a motion measure, by its key
+            return motion[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     @property
     def learned(self):
@@ -105,9 +115,9 @@ class Outcome(Result):
     def _dict(self) -> dict:
         from ekm.provenance import provenance
 
-        hidden = ("config", "record", "spec", "spec_maps", "learn_spelling")
+        hidden = ("config", "record", "spec", "spec_maps", "learn_spelling", "motion")
         outcome = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in hidden}
-        return {**outcome, "learn": self.learn_spelling, "config": asdict(self.config), **provenance()}
+        return {**outcome, **self.motion, "learn": self.learn_spelling, "config": asdict(self.config), **provenance()}
 
     def plot(self, ax=None):
         """The run to scale on ``ax`` (a new figure sized to the arena if None): world, path coloured by
@@ -246,5 +256,4 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
     finally:
         if bar is not None:
             bar.close()
-    return Outcome(**rec.outcome(), config=config, record=rec, spec=spec, spec_maps=maps,
-                   learn_spelling=None if learning is None else spell_learning(learning))
+    return Outcome.of(rec, config, spec, maps, None if learning is None else spell_learning(learning))

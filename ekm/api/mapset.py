@@ -136,10 +136,12 @@ class Map:
 
         import numpy as np
 
+        from ekm.angles import wrap
+
         alpha, d = float(target_alpha), float(target_d)
         if not (math.isfinite(alpha) and math.isfinite(d)) or d < 0:
             raise InputError(f"target ({target_alpha}, {target_d}): needs a finite bearing (rad) and distance >= 0 (m)")
-        alpha = math.remainder(alpha, 2 * math.pi)
+        alpha = wrap(alpha)
         c = np.asarray(_control(self.cfg)(self.ekm, np.array([alpha, d], np.float32)))
         return float(c[0]), float(c[1])
 

@@ -1,25 +1,24 @@
-"""Robot soccer in Python: :func:`match` (``ekm match``), :func:`tournament` (``ekm tournament``), :func:`players`
-(``ekm players``) and :func:`soccer_field` (field files), with their results.
+"""Robot soccer in Python: :func:`match` (``ekm match``), :func:`tournament` (``ekm tournament``) and
+:func:`soccer_field` (field files), with their results (the players: :func:`ekm.players`, :mod:`ekm.api.catalogue`).
 
 A game is one-on-one Khepera soccer on a field of :mod:`robots.soccer.fieldfile` (default the named field
 ``lci-cup``), refereed by :mod:`robots.soccer.referee`, played by :func:`evaluation.match.play_match`; a tournament
 is the round robin of the LCI Cup (Sahota 1993, ch. 4.3, Table 5): every pair of players, each player against
-itself too, once per seed, sent to workers as ``ekm compare`` sends its runs (:func:`evaluation.compare.compare`,
-:mod:`evaluation.workers`).
+itself too, once per seed, sent to workers as ``ekm compare`` sends its runs (the batch runner,
+:mod:`evaluation.batch`).
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ekm.api.checks import choice, number, whole
 from ekm.api.result import Result
 from ekm.errors import InputError, Interrupted
 
-__all__ = ["DEFAULT_PLAYERS", "MatchResult", "Players", "TournamentResult", "match", "players", "soccer_field",
-           "tournament"]
+__all__ = ["DEFAULT_PLAYERS", "MatchResult", "TournamentResult", "match", "soccer_field", "tournament"]
 
 _MATCH = "ekm match"
 _TOURNAMENT = "ekm tournament"
@@ -115,7 +114,7 @@ def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 
     Parameters
     ----------
     first, second : str or PlayerSpec
-        The players, spelt ``NAME[:k=v,...]`` (:func:`players` lists them): ``"deliberation:level=half"``.
+        The players, spelt ``NAME[:k=v,...]`` (:func:`ekm.players` lists them): ``"deliberation:level=half"``.
         ``first`` plays side 0 (defends the goal at x = 0); a player may meet itself.
     field : str, path or SoccerField, default "lci-cup"
         A named field or a field file (:mod:`robots.soccer.fieldfile`): the pitch, the ball, the kick-off poses
@@ -331,8 +330,8 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     """
     import time
 
-    from ekm.api.batch import Batch, run_batch
-    from evaluation.match import game_failed, game_key, job_key, play_job, standings, tournament_jobs
+    from evaluation.batch import run_batch
+    from evaluation.match import TOURNAMENT, play_job, standings, tournament_jobs
     from evaluation.workers import workers_for
     from robots.soccer.fieldfile import load_field
     from robots.soccer.roster import parse_players
@@ -362,11 +361,8 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
         "tournament": [str(s) for s in specs], "labels": labels, "seeds": seeds, "seed": seed, "minutes": minutes,
         "rule": rule, "field": spelling, "ekm_version": _version()}))
     pool = workers_for(play_job, workers, scheduler)
-    batch = Batch("tournament", "game", "playing", job_key=job_key, record_key=game_key,
-                  identity=lambda j: {**asdict(j), "ekm_version": _version()})
     t0 = time.perf_counter()
-    records = run_batch(batch, job_list, pool, settings, out=out, resume=resume, progress=progress,
-                        failed=game_failed)
+    records = run_batch(TOURNAMENT, job_list, pool, settings, out=out, resume=resume, progress=progress)
     seconds = time.perf_counter() - t0
     return TournamentResult(labels=tuple(labels), specs=tuple(str(s) for s in specs), records=tuple(records),
                             standings=tuple(standings(records, labels)), cross_table=tuple(_cross_rows(records, labels)),
@@ -378,29 +374,3 @@ def _version() -> str:
     from ekm import __version__
 
     return __version__
-
-
-# ------------------------------------------------------------------------------------------------- the players
-
-@dataclass(frozen=True)
-class Players(Result):
-    """Every soccer player (``ekm players``): ``rows``, each ``{name, summary, parameters}`` with ``parameters``
-    ``[{name, type, default, choices, help}]``. ``to_dict()`` is ``ekm players --json``."""
-
-    rows: tuple
-
-    def _dict(self) -> dict:
-        return {"players": list(self.rows)}
-
-    def names(self) -> list[str]:
-        return [r["name"] for r in self.rows]
-
-
-def players() -> Players:
-    """The soccer players :func:`match` and :func:`tournament` know (:mod:`robots.soccer.roster`), with their
-    parameters, defaults and allowed values."""
-    from robots.controllers.spec import describe_fields
-    from robots.soccer.roster import players as roster
-
-    return Players(rows=tuple({"name": name, "summary": player.summary, "parameters": describe_fields(player.params)}
-                              for name, player in roster().items()))

@@ -1,11 +1,12 @@
 """The ``ekm`` console script (docs/design.md §6): the imperative shell around the packages.
 
-One module per command, each with ``add_parser(sub)`` and ``run(args)``; shared argument types are in
-:mod:`ekm.cli.args`. Each ``run`` parses nothing more than argparse does, calls the one function of the
-Python API it wraps (:mod:`ekm.api`: ``ekm train`` is :func:`ekm.train`, …) and prints its result — a
-table, or ``result.to_dict()`` with ``--json`` — or draws it, so the command line and the API cannot
-drift apart (``ekm bench`` alone calls :mod:`training.throughput` directly). Each command imports what it
-needs inside its function, so ``ekm --help`` starts fast. Bad input of any kind raises :class:`ekm.errors.InputError`; :func:`main` prints its one line on
+One module per command, each with ``add_parser(sub)`` and ``run(args)`` (the catalogues of what one can add
+share one, :mod:`ekm.cli.catalogue`); shared argument types are in :mod:`ekm.cli.args`. Each ``run`` parses
+nothing more than argparse does, calls the one function of the Python API it wraps (:mod:`ekm.api`: ``ekm
+train`` is :func:`ekm.train`, …) and prints its result — a table, or ``result.to_dict()`` with ``--json`` — or
+draws it, so the command line and the API cannot drift apart (``ekm bench`` alone calls
+:mod:`training.throughput` directly). Each command imports what it needs inside its function, so ``ekm --help``
+starts fast. Bad input of any kind raises :class:`ekm.errors.InputError`; :func:`main` prints its one line on
 stderr and exits with status 2 — never a traceback.
 """
 
@@ -14,15 +15,16 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ekm.cli import (adapt, architectures, bench, compare, evaluate, match, plan, players, robots, run, tournament, train,
-                     worlds)
+from ekm.cli import adapt, bench, compare, evaluate, match, plan, robots, run, tournament, train, worlds
+from ekm.cli.catalogue import ARCHITECTURES, FAMILIES, PLAYERS
 from ekm.cli.args import (finite_float, nonneg_float, nonneg_int, output_path, positive_float, positive_int,
                           print_json, show_progress, xy_point)
 from ekm.errors import InputError, Interrupted
 
-#: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here.
-COMMANDS = (worlds, robots, plan, train, evaluate, adapt, architectures, run, compare, match, tournament, players,
-            bench)
+#: The sub-commands, in the order ``ekm --help`` lists them; a new command is a module added here (a catalogue of a
+#: kind one can add is a :class:`ekm.cli.catalogue.Catalogue`).
+COMMANDS = (worlds, robots, FAMILIES, plan, train, evaluate, adapt, ARCHITECTURES, run, compare, match, tournament,
+            PLAYERS, bench)
 
 __all__ = ["COMMANDS", "build_parser", "main", "finite_float", "nonneg_float", "nonneg_int", "output_path",
            "positive_float", "positive_int", "print_json", "show_progress", "xy_point"]

@@ -52,7 +52,7 @@ def run(args) -> None:
     print(f"from {table.map['source']} (trained on {table.map['robot']}); fine-tuned {s['steps']} steps at "
           f"{s['rate']}; from scratch the first {s['scratch_steps']} steps of the ch. 6.1 protocol; tests of "
           f"{s['targets']} targets, seeds {s['seed']}/{s['test_seed']}; {table.seconds:.0f} s")
-    head = ("robot", "frozen E mm", "T(5)", "D(25)", f"fine-tuned E mm", "T(5)", "D(25)", "scratch E mm", "T(5)",
+    head = ("robot", "frozen E mm", "T(5)", "D(25)", "fine-tuned E mm", "T(5)", "D(25)", "scratch E mm", "T(5)",
             "D(25)", "to E<=3mm: fine/scratch", "to scratch's T(5): fine/scratch")
     lines = [head]
     for r in table.rows:

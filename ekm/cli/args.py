@@ -11,8 +11,9 @@ import sys
 from ekm.api.checks import invalid_choice, output_path, sign_problem
 from ekm.provenance import provenance
 
-__all__ = ["command", "finite_float", "nonneg_float", "nonneg_int", "one_of", "output_path", "positive_float", "positive_int",
-           "print_json", "provenance", "show_progress", "xy_point"]
+__all__ = ["add_batch_options", "command", "finite_float", "in_this_process", "nonneg_float", "nonneg_int", "one_of",
+           "output_path", "positive_float", "positive_int", "print_columns", "print_json", "provenance",
+           "show_progress", "xy_point"]
 
 
 def command(sub, name: str, summary: str, examples: list[str], *, usage: str | None = None, more: str = ""):
@@ -92,3 +93,35 @@ def print_json(obj) -> None:
 def show_progress(args) -> bool:
     """Progress bars only on a terminal and never with ``--json``."""
     return not getattr(args, "json", False) and sys.stderr.isatty()
+
+
+def print_columns(lines) -> None:
+    """``lines`` (tuples of cells, the head first) as left-aligned columns two spaces apart."""
+    widths = [max(len(str(line[i])) for line in lines) for i in range(len(lines[0]))]
+    for line in lines:
+        print("  ".join(str(v).ljust(w) for v, w in zip(line, widths)).rstrip())
+
+
+def add_batch_options(p, unit: str, resume: str) -> None:
+    """The options of a command whose ``unit`` s (runs, games) go through the batch runner (:mod:`evaluation.batch`):
+    where they go (``--workers``, ``--scheduler``) and their results file (``--out``; ``--resume``, helped by
+    ``resume``)."""
+    import os
+
+    p.add_argument("--workers", type=positive_int, default=None,
+                   help=f"local worker processes, each on a CPU of its own (default: the machine's cores, "
+                        f"{os.cpu_count()})")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help=f"send the {unit}s to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
+    p.add_argument("--out", metavar="RESULTS.jsonl",
+                   help=f"append every finished {unit} to this results file as it arrives (JSON Lines; must not exist)")
+    p.add_argument("--resume", metavar="RESULTS.jsonl", help=resume)
+
+
+def in_this_process(args) -> None:
+    """With ``--workers 1`` and no ``--scheduler`` the jobs run in this process: one CPU for it
+    (:mod:`evaluation.pinning`)."""
+    if args.workers == 1 and not args.scheduler:
+        from evaluation.pinning import pin_to_one_cpu
+
+        pin_to_one_cpu()

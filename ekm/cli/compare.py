@@ -3,9 +3,8 @@
 
 from __future__ import annotations
 
-import os
-
-from ekm.cli.args import command, nonneg_int, output_path, positive_int, print_json, show_progress
+from ekm.cli.args import (add_batch_options, command, in_this_process, nonneg_int, output_path, positive_int,
+                          print_columns, print_json, show_progress)
 from ekm.cli.run import add_robot_options, add_scenario_options
 
 
@@ -33,19 +32,11 @@ def add_parser(sub) -> None:
     p.add_argument("--trials", type=positive_int, default=10, help="runs per architecture and world (default 10)")
     p.add_argument("--seed", type=nonneg_int, default=0,
                    help="trial i runs with seed SEED + i for every architecture and world (default 0)")
-    p.add_argument("--workers", type=positive_int, default=None,
-                   help=f"local worker processes, each on a CPU of its own (default: the machine's cores, "
-                        f"{os.cpu_count()})")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="send the runs to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
     add_scenario_options(p)
     add_robot_options(p, "; every run starts from the same map")
-    p.add_argument("--out", metavar="RESULTS.jsonl",
-                   help="append every finished run to this results file as it arrives (JSON Lines; must not exist)")
-    p.add_argument("--resume", metavar="RESULTS.jsonl",
-                   help="finish the comparison of this results file (the same arguments as the one that made it): "
-                        "only the missing runs are made")
+    add_batch_options(p, "run", "finish the comparison of this results file (the same arguments as the one that made "
+                                "it): only the missing runs are made")
     p.add_argument("--from", dest="from_results", metavar="RESULTS.jsonl",
                    help="no runs: the table (and --plot, --json) of a finished results file")
     p.add_argument("--motion", action="store_true",
@@ -68,10 +59,7 @@ def run(args) -> None:
             raise InputError("ekm compare: --from makes no runs; drop --out and --resume")
         table = load_comparison(args.from_results)
     else:
-        if args.workers == 1 and not args.scheduler:  # the runs go in this process: one CPU for it (evaluation.pinning)
-            from evaluation.pinning import pin_to_one_cpu
-
-            pin_to_one_cpu()
+        in_this_process(args)
         table = compare(args.worlds, args.architectures, suite=args.suite, world_seed=args.world_seed,
                         trials=args.trials, seed=args.seed, maps=args.map, recover=args.recover,
                         time_limit=args.time_limit, checkpoints=args.checkpoints, cell=args.cell,
@@ -116,7 +104,7 @@ def print_robot(table) -> None:
 def print_families(rows) -> None:
     """The comparison by family of generated worlds: success with its 95 % interval over all their runs."""
     head = ("family", "architecture", "worlds", "success", "95 % interval", "time s", "trapped", "collisions", "failed")
-    _print([head] + [(r["family"], r["architecture"], str(r["worlds"]), *_success(r), _mean(r["mean_time_s"], 1),
+    print_columns([head] + [(r["family"], r["architecture"], str(r["worlds"]), *_success(r), _mean(r["mean_time_s"], 1),
                       str(r["trapped"]), str(r["collisions"]), str(r["failed"])) for r in rows])
 
 
@@ -130,31 +118,22 @@ def _mean(value, digits: int) -> str:
     return "" if value is None else f"{value:.{digits}f}"
 
 
-def _print(lines) -> None:
-    widths = [max(len(str(line[i])) for line in lines) for i in range(len(lines[0]))]
-    for line in lines:
-        print("  ".join(str(v).ljust(w) for v, w in zip(line, widths)).rstrip())
-
-
 def print_table(rows) -> None:
     """The comparison as a table: success with its 95 % interval, mean time and path of the successes."""
     head = ("architecture", "world", "success", "95 % interval", "time s", "path m", "trapped", "collisions", "runs")
-    _print([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1), _mean(r["mean_path_m"], 2),
-                      str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"]) for r in rows])
-
-
-#: The motion measures ``--motion`` prints: (key, column head, scale to the unit shown, digits).
-MOTION_COLUMNS = (("command_change_mps", "change mm/s", 1000.0, 1), ("angular_accel_rms", "ang. acc. rad/s2", 1.0, 2),
-                  ("stopped_s", "stopped s", 1.0, 1), ("turn_reversals_per_m", "reversals /m", 1.0, 1),
-                  ("path_ratio", "path/route", 1.0, 2), ("stop_distance_m", "stop mm", 1000.0, 2))
+    print_columns([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1),
+                             _mean(r["mean_path_m"], 2), str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"])
+                            for r in rows])
 
 
 def print_motion(rows) -> None:
     """Each architecture over all its runs (:func:`evaluation.compare.by_architecture`): its response encoding,
-    success, and each motion measure (:mod:`evaluation.motion`) as mean ± the half-width of its 95 % interval."""
-    from robots.controllers.spec import registry
+    success, and each motion measure (:data:`evaluation.motion.MEASURES`) as mean ± the half-width of its 95 %
+    interval."""
+    from evaluation.motion import MEASURES
+    from robots.controllers.spec import ARCHITECTURES
 
-    known = registry()
+    known = ARCHITECTURES.all()
 
     def encoding(label: str) -> str:
         arch = known.get(label.split(":")[0])
@@ -166,6 +145,6 @@ def print_motion(rows) -> None:
         half = (m["ci95"][1] - m["ci95"][0]) / 2 * scale
         return f"{m['mean'] * scale:.{digits}f} ±{half:.{digits}f}"
 
-    head = ("architecture", "encoding", "runs", "success") + tuple(h for _, h, _, _ in MOTION_COLUMNS)
-    _print([head] + [(r["architecture"], encoding(r["architecture"]), str(r["trials"]), _success(r)[0],
-                      *(cell(r["motion"][k], scale, digits) for k, _, scale, digits in MOTION_COLUMNS)) for r in rows])
+    head = ("architecture", "encoding", "runs", "success") + tuple(m.column for m in MEASURES)
+    print_columns([head] + [(r["architecture"], encoding(r["architecture"]), str(r["trials"]), _success(r)[0],
+                      *(cell(r["motion"][m.key], m.scale, m.digits) for m in MEASURES)) for r in rows])

@@ -70,6 +70,7 @@ def run(args) -> None:
     """Drive the robot through a world with one architecture and report the outcome (docs/design.md §6;
     :func:`ekm.run`)."""
     from ekm.api.driving import run as drive
+    from evaluation.motion import MEASURES
     from evaluation.pinning import pin_to_one_cpu
 
     pin_to_one_cpu()  # one run, one thread of work: one CPU for it (evaluation.pinning)
@@ -119,10 +120,8 @@ def run(args) -> None:
     print(f"  {status}: {out['ended']} after {out['time_s']:.1f} s, path {out['path_m']:.2f} m, "
           f"{out['collisions']} collisions, final distance {1000 * out['final_distance_m']:.1f} mm")
     print(f"  checkpoints reached {out['checkpoints_reached']}, replans {out['replans']}, recoveries {out['recoveries']}")
-    ratio = "" if out["path_ratio"] is None else f", path {out['path_ratio']:.2f} x the planned route"
-    print(f"  motion: command change {out['command_change_mps'] * 1000:.1f} mm/s a tick, angular acceleration "
-          f"{out['angular_accel_rms']:.2f} rad/s^2 RMS, stopped {out['stopped_s']:.1f} s, "
-          f"{out['turn_reversals_per_m']:.1f} turn reversals per m{ratio}")
+    print("  motion: " + ", ".join(f"{m.column} {out[m.key] * m.scale:.{m.digits}f}" for m in MEASURES
+                                   if out[m.key] is not None))
     for path in (plot, gif, save_map):
         if path:
             print(f"  written to {path}")

@@ -3,9 +3,8 @@ against itself too, over seeds, in parallel — with its cross table and standin
 
 from __future__ import annotations
 
-import os
-
-from ekm.cli.args import command, nonneg_int, positive_float, positive_int, print_json, show_progress
+from ekm.cli.args import (add_batch_options, command, in_this_process, nonneg_int, positive_float, positive_int,
+                          print_columns, print_json, show_progress)
 from ekm.cli.match import add_field_option
 
 
@@ -25,16 +24,8 @@ def add_parser(sub) -> None:
     p.add_argument("--seeds", type=positive_int, default=10, help="games per pairing (default 10)")
     p.add_argument("--seed", type=nonneg_int, default=0,
                    help="game k of every pairing is played with seed SEED + k (default 0)")
-    p.add_argument("--workers", type=positive_int, default=None,
-                   help=f"local worker processes, each on a CPU of its own (default: the machine's cores, "
-                        f"{os.cpu_count()})")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="send the games to a running Dask scheduler (tcp://host:8786; needs ekm[cluster])")
-    p.add_argument("--out", metavar="RESULTS.jsonl",
-                   help="append every finished game to this results file as it arrives (JSON Lines; must not exist)")
-    p.add_argument("--resume", metavar="RESULTS.jsonl",
-                   help="finish the tournament of this results file (same players and settings): its games are kept, "
-                        "the missing ones played and appended")
+    add_batch_options(p, "game", "finish the tournament of this results file (same players and settings): its games "
+                                 "are kept, the missing ones played and appended")
     p.add_argument("--plot", metavar="PNG", help="each player's goal difference and win rate with their intervals")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
@@ -46,10 +37,7 @@ def run(args) -> None:
     from ekm.cli.args import output_path
 
     plot = output_path(args.plot, "--plot", ".png") if args.plot else None
-    if args.workers == 1 and not args.scheduler:  # the games go in this process: one CPU for it (evaluation.pinning)
-        from evaluation.pinning import pin_to_one_cpu
-
-        pin_to_one_cpu()
+    in_this_process(args)
     result = tournament(args.players, field=args.field, minutes=args.minutes, seeds=args.seeds, seed=args.seed,
                         rule=args.rule, workers=args.workers, scheduler=args.scheduler, out=args.out,
                         resume=args.resume, progress=show_progress(args))
@@ -73,12 +61,6 @@ def run(args) -> None:
             print(f"{what} written to {path}")
 
 
-def _print(lines) -> None:
-    widths = [max(len(str(line[i])) for line in lines) for i in range(len(lines[0]))]
-    for line in lines:
-        print("  ".join(str(v).ljust(w) for v, w in zip(line, widths)).rstrip())
-
-
 def print_cross_table(result) -> None:
     """Sahota's Table 5: row player against column player, "a - b" the row's goals and the column's summed over the
     seeds; self-play on the diagonal (side 0's goals first); the upper triangle only."""
@@ -100,7 +82,7 @@ def print_cross_table(result) -> None:
                 short = short or bool(mark)
                 line.append(f"{cell['goals'][0]} - {cell['goals'][1]}{mark}")
         lines.append(tuple(line))
-    _print(lines)
+    print_columns(lines)
     if short:
         print("* a game of this pairing could not be played: its sums leave it out")
 
@@ -118,4 +100,4 @@ def print_standings(rows) -> None:
         lines.append((r["player"], str(r["games"]), f"{r['won']}-{r['drawn']}-{r['lost']}",
                       f"{r['goals_for']}-{r['goals_against']}", f"{r['goal_difference']:+.2f}",
                       f"{glo:+.2f} .. {ghi:+.2f}", f"{r['win_rate']:.2f}", f"{wlo:.2f}-{whi:.2f}"))
-    _print(lines)
+    print_columns(lines)

@@ -3,16 +3,7 @@
 
 from __future__ import annotations
 
-
-from ekm.cli.args import command, finite_float, nonneg_int, one_of, print_json
-from robots.generator import FAMILIES
-
-
-def _families() -> str:
-    width = max(map(len, FAMILIES))
-    lines = [f"  {name.ljust(width)}  {text}" for name, text in FAMILIES.items()]
-    return ("generated world families (--generate FAMILY --seed N [--difficulty D] --out FILE; the world's\n"
-            "name, FAMILY:SEED or FAMILY:SEED:D, is also a --world everywhere):\n" + "\n".join(lines))
+from ekm.cli.args import command, finite_float, nonneg_int, print_json
 
 
 def add_parser(sub) -> None:
@@ -21,15 +12,16 @@ def add_parser(sub) -> None:
                 ["ekm worlds", "ekm worlds --show three-rooms > my-lab.json   # a template to edit",
                  "ekm worlds --check my-lab.json --plot my-lab.png",
                  "ekm worlds --generate maze --seed 7 --out maze7.json"],
-                more=_families())
+                more="A generated world's family is one of ekm families (--generate FAMILY --seed N [--difficulty D] "
+                     "--out FILE);\nthe world's name, FAMILY:SEED or FAMILY:SEED:D, is also a --world everywhere.")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--plot", metavar="DIR|PNG",
                    help="draw each world to DIR/NAME.png, or one world to PNG (with --generate: the generated world)")
     p.add_argument("--check", metavar="FILE", nargs="+", help="validate world files (exit 2 on the first bad one)")
     p.add_argument("--show", metavar="WORLD",
                    help="print a world's file (a named world, a file or FAMILY:SEED): a template for your own")
-    p.add_argument("--generate", metavar="FAMILY", type=one_of(tuple(FAMILIES)),
-                   help="generate a world of FAMILY (listed below); needs --seed and --out")
+    p.add_argument("--generate", metavar="FAMILY",
+                   help="generate a world of FAMILY (ekm families lists them); needs --seed and --out")
     p.add_argument("--seed", metavar="N", type=nonneg_int, help="the generated world's seed (whole number >= 0)")
     p.add_argument("--difficulty", metavar="D", type=finite_float,
                    help="its difficulty in [0, 1] (default: drawn from the seed)")
@@ -83,12 +75,14 @@ def run(args) -> None:
 def generate(args) -> None:
     """``--generate FAMILY --seed N [--difficulty D] --out FILE [--plot PNG] [--json]``: the world file,
     written atomically, and its counts and difficulty measures."""
-    from ekm.api.checks import output_path
+    from ekm.api.checks import choice, output_path
     from ekm.api.worlds import generate as make
     from ekm.errors import InputError
     from ekm.provenance import provenance
+    from robots.generator import FAMILIES
     from robots.worldfile import save_world
 
+    choice(args.generate, FAMILIES.names(), "--generate", "ekm worlds")
     if args.check:
         raise InputError("ekm worlds: argument --check: not with --generate")
     for option in ("seed", "out"):

@@ -52,6 +52,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from ekm.angles import wrap
+
 #: The weight curve's defaults (see the module docstring): full weight for one 0.128 s control period, then an
 #: exponential fall with a 10 s time constant.
 FULL_S = 0.128
@@ -88,7 +90,7 @@ class VelocityGrid:
     def angles(self) -> np.ndarray:
         """θ_i ``(n_dir,)`` in (−π, π]."""
         a = self.step_angle * np.arange(self.directions)
-        return np.where(a > math.pi, a - 2.0 * math.pi, a).astype(np.float32)
+        return wrap(a).astype(np.float32)
 
     def speed_values(self) -> np.ndarray:
         """s_j ``(n_speed,)``."""
@@ -111,11 +113,6 @@ def weight(t, full: float = FULL_S, tau: float = TAU_S):
     ``t`` ≤ ``full`` s, ``exp(−(t − full)/tau)`` after, 0 for ``t = inf`` (no collision)."""
     t = jnp.asarray(t)
     return jnp.where(jnp.isfinite(t), jnp.exp(-jnp.maximum(t - full, 0.0) / tau), 0.0)
-
-
-def wrap(a):
-    """Angles wrapped to (−π, π]."""
-    return jnp.pi - jnp.mod(jnp.pi - a, 2.0 * jnp.pi)
 
 
 # ---------------------------------------------------------------------------------------- Eq. 3.1 (MSA)

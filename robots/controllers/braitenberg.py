@@ -28,6 +28,7 @@ import math
 import jax.numpy as jnp
 import numpy as np
 
+from ekm.angles import wrap
 from robots.params import SensorSet
 
 #: Sensors within this angle of straight ahead are forward-facing (Fig. 4.3).
@@ -41,7 +42,7 @@ def z_matrix(sensors: SensorSet, cross: float, same: float, front: float = FRONT
         raise ValueError(f"Braitenberg gains must be >= 0, got cross={cross}, same={same}")
     z = np.zeros((2, len(sensors.angles)), dtype=np.float32)
     for j, phi in enumerate(sensors.angles):
-        phi = math.remainder(phi, 2.0 * math.pi)
+        phi = wrap(phi)
         # How much of the sensor is on the left: 1 left, 0 right, 1/2 straight ahead or straight behind.
         left = 0.5 if min(abs(phi), math.pi - abs(phi)) < 1e-9 else (1.0 if phi > 0 else 0.0)
         own, opposite = (same, -cross) if abs(phi) <= front + 1e-9 else (same, 0.5 * same)

@@ -48,7 +48,8 @@ import jax.numpy as jnp
 
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, on_ring, ring
-from robots.controllers.discrete import free_ahead, rotate, sense, wheels, wrap
+from ekm.angles import wrap
+from robots.controllers.discrete import free_ahead, rotate, sense, wheels
 from robots.params import KHEPERA, RobotParams
 
 @dataclass(frozen=True)

@@ -73,10 +73,10 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
+from ekm.angles import wrap
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, on_ring, ring
-from robots.controllers.discrete import (bearing, free_ahead, in_the_way, rotate, sense, way_out, wheels, world_point,
-                                         wrap)
+from robots.controllers.discrete import bearing, free_ahead, in_the_way, rotate, sense, way_out, wheels, world_point
 from robots.params import KHEPERA, RobotParams
 
 #: Action schemas, by index.

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 
+from ekm.angles import wrap
 from robots.controllers import memory as mem
-from robots.controllers.base import hit_points
 from robots.params import KHEPERA, RobotParams
 
 
@@ -32,17 +32,6 @@ def wheels(v, omega, robot: RobotParams = KHEPERA):
     pair = jnp.stack([v - half, v + half]).astype(jnp.float32)
     peak = jnp.max(jnp.abs(pair))
     return pair * jnp.minimum(1.0, robot.max_wheel_speed / jnp.maximum(peak, 1e-12))
-
-
-def wrap(angle):
-    """``angle`` (rad) wrapped into [−π, π)."""
-    return (angle + jnp.pi) % (2.0 * jnp.pi) - jnp.pi
-
-
-def ir_points(readings, angles, radius: float = KHEPERA.radius):
-    """What each sensor sees, in the robot's frame (x ahead, y left): points ``(m, 2)`` (m) and the mask ``(m,)``
-    of the sensors that see something (:func:`~robots.controllers.base.hit_points` at the origin)."""
-    return hit_points(jnp.zeros(3, jnp.float32), jnp.asarray(readings, jnp.float32), angles, radius, xp=jnp)
 
 
 def in_the_way(points, seen, radius: float, margin: float, reach: float):

@@ -65,7 +65,8 @@ import jax.numpy as jnp
 
 from ekm import indirect
 from ekm.config import EKMConfig
-from ekm.kohonen import relative, winner, wrap, wrap_near
+from ekm.angles import wrap, wrap_near
+from ekm.kohonen import relative, winner
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles
 from robots.params import KHEPERA, RobotParams

@@ -139,7 +139,7 @@ def parse_learning(text) -> LearnParams:
     from dataclasses import replace
 
     from ekm.learning import RULES
-    from robots.controllers.spec import parse_named, parse_one, typed_params
+    from robots.spelling import parse_named, parse_one, typed_params
 
     if isinstance(text, LearnParams):
         return text
@@ -172,7 +172,7 @@ def spell_learning(params: LearnParams) -> str:
     the defaults."""
     from dataclasses import replace
 
-    from robots.controllers.spec import spell
+    from robots.spelling import spell
 
     rule = spell(params.rule.rule, replace(params.rule, rule=params.rule.rule), Adaptation(rule=params.rule.rule))
     rest = spell("", params, replace(LearnParams(), rule=params.rule)).lstrip(":")

@@ -19,7 +19,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from ekm.kohonen import wrap, wrap_near
+from ekm.angles import wrap, wrap_near
 from robots.controllers.base import hit_points
 
 

@@ -58,6 +58,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
+from ekm.angles import wrap
 from robots.controllers import actionmaps as am
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles, velocity_to_wheels
@@ -191,8 +192,8 @@ def arbiter(composite, heading, theta, p: SambaParams, grid: am.VelocityGrid):
     ``keep`` of the last action's world direction ``heading`` (NaN: none yet) count their time shorter by the
     fraction ``tie`` (weight w^(1/(1 + tie)) on the exponential curve), so a jump to a far direction needs a
     clearly better action. Returns ``(i, j, go)``; ``go`` False when no action weighs above zero."""
-    prev = am.wrap(heading - theta)
-    near = (jnp.abs(am.wrap(jnp.asarray(grid.angles()) - prev)) <= p.keep + 1e-6) & ~jnp.isnan(heading)
+    prev = wrap(heading - theta)
+    near = (jnp.abs(wrap(jnp.asarray(grid.angles()) - prev)) <= p.keep + 1e-6) & ~jnp.isnan(heading)
     favoured = jnp.where(near[:, None] & (composite > 0),
                          jnp.power(jnp.maximum(composite, 1e-30), 1.0 / (1.0 + p.tie)), composite)
     i, j = am.best(favoured)
@@ -271,7 +272,7 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     if p.refine:
         direction = direction + jnp.where(positive, refine(composite, i, j), 0.0) * grid.step_angle
     speed = jnp.asarray(grid.speed_values())[j]
-    heading = jnp.where(go, am.wrap(theta + direction), state.heading)
+    heading = jnp.where(go, wrap(theta + direction), state.heading)
     if p.guard:
         speed = forward_speed(direction, speed, composite, grid)
     return Tick(SambaState(memory, heading), goto, avoid, composite, times, i, j, direction, speed, go, objects, valid)

@@ -64,7 +64,8 @@ import jax.numpy as jnp
 
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, on_ring, ring
-from robots.controllers.discrete import in_the_way, sense, way_out, wheels, wrap
+from ekm.angles import wrap
+from robots.controllers.discrete import in_the_way, sense, way_out, wheels
 from robots.params import KHEPERA, RobotParams
 
 #: Response names, by index (the table of the module docstring).

@@ -14,25 +14,50 @@ the same world from the name alone, bit for bit.
   a route is never returned (its builder tries again with the next sub-seed). The world's ``difficulty``
   holds the search's measures.
 - Coordinates are rounded to 0.1 mm, so the world file is tidy and a world is the same in any process.
+
+A family is one :class:`Family` in :data:`FAMILIES`: the package's are one module each
+(``robots/generator/families/NAME.py``, its ``layout`` and its ``FAMILY``); a user's is added with
+``ekm.register_family`` or the entry-point group ``ekm.families``. :mod:`robots.generator.build` turns a
+layout into a world the same way for every family.
 """
 
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
+from typing import Any, Callable
 
 from ekm.errors import InputError
+from robots.registry import NAME, Registry, check_callable
 
-#: The families, in the order they are listed, each with its one-line description.
-FAMILIES = {
-    "corridor": "a closed corridor 8-15 cm wide that bends and zig-zags, 1 to 8 turns, start at one end",
-    "traps": "one to three unforeseen U, V and box-made traps in an open arena, open towards the robot",
-    "clutter": "unforeseen boxes and circles, denser with the difficulty, gaps down to 8 cm",
-    "maze": "2x2 to 4x4 rooms of known walls: a perfect maze with 8-12 cm doors, dead ends, half walls",
-    "movers": "rooms and corridors whose doorways and corridors 1 to 3 moving obstacles cross",
-    "blocked": "known walls with two or more routes; unforeseen boxes close the doors of the shortest",
-}
 
-_SPELLING = re.compile(r"([a-z]+):([^:]*)(?::([^:]*))?")
+@dataclass(frozen=True)
+class Family:
+    """A family of generated worlds: ``layout(rng, level)`` draws one world's document from a NumPy generator and a
+    difficulty level in [0, 1] and returns a :class:`robots.generator.layout.Layout` (or raises
+    :class:`~robots.generator.layout.Retry` to be called again with the next sub-seed); ``summary``: one line,
+    what it makes. :func:`robots.generator.build.build` does the rest, the same for every family."""
+
+    name: str
+    layout: Callable[..., Any]
+    summary: str
+
+
+def _built_in() -> tuple[Family, ...]:
+    from robots.generator.families import blocked, clutter, corridor, maze, movers, traps
+
+    return tuple(m.FAMILY for m in (corridor, traps, clutter, maze, movers, blocked))
+
+
+def _check(family: Family) -> None:
+    check_callable("family", family.name, "layout", family.layout)
+
+
+#: Every family ``ekm worlds --generate``, ``ekm compare --suite`` and ``ekm families`` know, in the order they are
+#: listed (:class:`robots.registry.Registry`).
+FAMILIES = Registry("family", "families", Family, _built_in, _check)
+
+_SPELLING = re.compile(rf"({NAME.pattern}):([^:]*)(?::([^:]*))?")
 
 
 def spelling(family: str, seed: int, difficulty: float | None = None) -> str:
@@ -74,7 +99,7 @@ def generate(family: str, seed: int, difficulty: float | None = None):
     if difficulty is not None and (isinstance(difficulty, bool) or not isinstance(difficulty, numbers.Real)
                                    or not 0.0 <= difficulty <= 1.0):
         raise InputError(f"{family}: the difficulty must be a number in [0, 1], got {difficulty!r}")
-    from robots.generator.families import build
+    from robots.generator.build import build
 
-    return build(family, int(seed), None if difficulty is None else float(difficulty),
+    return build(FAMILIES[family], int(seed), None if difficulty is None else float(difficulty),
                  spelling(family, int(seed), difficulty))

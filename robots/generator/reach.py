@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ekm.angles import wrap
 from robots.geometry import distance
 from robots.params import KHEPERA
 
@@ -351,7 +352,7 @@ def count_turns(route, min_deg: float = TURN_DEG, merge: float = TURN_MERGE) -> 
     if len(seg) < 2:
         return 0
     heading = np.arctan2(seg[:, 1], seg[:, 0])
-    change = (np.diff(heading) + math.pi) % (2 * math.pi) - math.pi  # at each interior vertex
+    change = wrap(np.diff(heading))  # at each interior vertex
     turns, net = 0, 0.0
     for k, d in enumerate(change):
         if k > 0 and lengths[k] >= merge:  # the segment before this vertex is long: a new turn starts

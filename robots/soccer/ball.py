@@ -85,6 +85,10 @@ def _xy(where: str, value) -> np.ndarray:
 class Pitch:
     """The field's walls and the ball in a ``pymunk.Space``: the imperative shell of a soccer game.
 
+    The ball starts still on the centre spot. Robots are added later straight into :attr:`space` (static or
+    kinematic bodies): pymunk multiplies the elasticities of two touching shapes, so a shape with elasticity
+    1.0 bounces the ball at its ``restitution``, one with 0.0 stops its normal motion dead.
+
     Parameters
     ----------
     field : Field
@@ -92,10 +96,6 @@ class Pitch:
     ball : BallParams
         The ball; it must fit into a goal (radius < ``goal_depth``, diameter < ``goal_mouth``), else no goal
         could ever be scored and :class:`~ekm.errors.InputError` is raised.
-
-    The ball starts still on the centre spot. Robots are added later straight into :attr:`space` (static or
-    kinematic bodies): pymunk multiplies the elasticities of two touching shapes, so a shape with elasticity
-    1.0 bounces the ball at its ``restitution``, one with 0.0 stops its normal motion dead.
 
     Attributes
     ----------

@@ -30,6 +30,7 @@ import math
 
 import numpy as np
 
+from ekm.angles import wrap
 from robots.body import RobotBody, finite
 from robots.params import KHEPERA, RobotParams
 from robots.soccer.ball import BALL_COLLISION_TYPE, BallParams, Pitch
@@ -158,7 +159,7 @@ class Game:
                 still = True
             balls[j] = tuple(self.pitch.ball_body.position)
         for r, tr in zip(self.robots, traces):
-            tr[:, 2] = np.pi - (np.pi - tr[:, 2]) % (2.0 * np.pi)
+            tr[:, 2] = wrap(tr[:, 2])
             r.trace = tr
         self.ball_trace = balls
         return scored

@@ -23,6 +23,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ekm.angles import wrap
 from robots.soccer.field import Field, _side
 
 
@@ -54,7 +55,7 @@ def own_frame(side: int, field: Field, pose, velocity, ball, opponent):
     L, W = field.length, field.width
 
     def turn(theta):
-        return np.pi - (np.pi - (theta + np.pi)) % (2.0 * np.pi)
+        return wrap(theta + np.pi)
 
     return (np.array([L - pose[0], W - pose[1], turn(pose[2])]), -velocity,
             np.array([L - ball[0], W - ball[1], -ball[2], -ball[3]]),

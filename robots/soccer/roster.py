@@ -1,25 +1,32 @@
 """Soccer players by name, with parameters: ``deliberation:level=half``, ``samba``, ``ekm``, ``schema``.
 
 A player is a parameter dataclass and a ``build(params, field=…, robot=…, spec=…)`` that returns a
-:class:`~robots.controllers.base.Controller` whose step takes a :class:`robots.soccer.play.Play`. The command
-line spells players as ``ekm compare`` spells architectures (:func:`robots.controllers.spec.parse_architectures`):
-``NAME[:k=v[,k=v…]]``, several separated by commas; every unknown name, parameter or bad value is an
-:class:`~ekm.errors.InputError` with one line naming it.
+:class:`~robots.controllers.base.Controller` whose step takes a :class:`robots.soccer.play.Play`, kept in
+:data:`PLAYERS` (the package's, an installed package's through the entry-point group ``ekm.players``, or one
+added with ``ekm.register_player``: :mod:`robots.registry`). The command line spells players as it spells
+architectures (:mod:`robots.spelling`).
 """
 
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, Callable
 
-from ekm.errors import InputError
-from robots.controllers.spec import parse_named, parse_one, spell, typed_params
+from robots.registry import Registry, check_callable, check_params
+from robots.spelling import Spec
 
 
 @dataclass(frozen=True)
 class Player:
-    """A named player: its parameter class, its builder and a one-line summary."""
+    """A named player: its parameter class, its builder and a one-line summary.
+
+    ``params`` is a frozen dataclass whose every field has a default; a field's ``metadata`` may hold ``help``
+    (one line, with the unit) and ``choices``. ``build(params, field=…, robot=…, spec=…)`` returns a
+    :class:`~robots.controllers.base.Controller` whose ``step(state, play)`` gets a
+    :class:`~robots.soccer.play.Play` — the game in the player's own frame: it always attacks the goal at
+    x = ``field.length`` — and returns ``(state, (left, right) wheel speeds in m/s)``.
+    """
 
     name: str
     params: type
@@ -27,57 +34,37 @@ class Player:
     summary: str
 
 
-_PLAYERS = (
-    ("deliberation", "deliberation", "SoccerDeliberationParams",
-     "reactive deliberation: Table 4's behaviours bid for Table 3's action schemas (Sahota §4.2); level=half|none "
-     "are the LCI Cup's half-wit and no-wit"),
-    ("samba", "samba", "SoccerSambaParams",
-     "Samba for Soccer: action maps for the ball, the goals and the opponent, combined and arbitrated (Riekki ch. 5)"),
-    ("ekm", "striker", "EkmParams",
-     "the trained indirect EKM with neural-field avoidance, to the point behind the ball on the line to the goal "
-     "(ch. 5)"),
-    ("schema", "striker", "SchemaParams",
-     "motor schemas to the point behind the ball on the line to the goal (Arkin ch. 4.4)"),
-)
+def _built_in() -> tuple[Player, ...]:
+    from robots.soccer.players import deliberation, samba, striker
+
+    return (
+        Player("deliberation", deliberation.SoccerDeliberationParams, deliberation.build,
+               "reactive deliberation: Table 4's behaviours bid for Table 3's action schemas (Sahota §4.2); "
+               "level=half|none are the LCI Cup's half-wit and no-wit"),
+        Player("samba", samba.SoccerSambaParams, samba.build,
+               "Samba for Soccer: action maps for the ball, the goals and the opponent, combined and arbitrated "
+               "(Riekki ch. 5)"),
+        Player("ekm", striker.EkmParams, striker.build,
+               "the trained indirect EKM with neural-field avoidance, to the point behind the ball on the line to "
+               "the goal (ch. 5)"),
+        Player("schema", striker.SchemaParams, striker.build,
+               "motor schemas to the point behind the ball on the line to the goal (Arkin ch. 4.4)"),
+    )
 
 
-def _players() -> dict[str, Player]:
-    import importlib
-
-    out = {}
-    for name, module, params, summary in _PLAYERS:
-        m = importlib.import_module(f"robots.soccer.players.{module}")
-        out[name] = Player(name, getattr(m, params), m.build, summary)
-    return out
+def _check(player: Player) -> None:
+    check_params("player", player.name, player.params)
+    check_callable("player", player.name, "build", player.build)
 
 
-_CACHE: dict[str, Player] = {}
+#: Every player ``ekm match``, ``ekm tournament`` and ``ekm players`` know (:class:`robots.registry.Registry`).
+PLAYERS = Registry("player", "players", Player, _built_in, _check)
 
 
-def players() -> dict[str, Player]:
-    """Every player by name, in the order ``ekm players`` lists them."""
-    if not _CACHE:
-        _CACHE.update(_players())
-    return _CACHE
-
-
-@dataclass(frozen=True)
-class PlayerSpec:
+class PlayerSpec(Spec):
     """A player with resolved parameters; ``str(spec)`` spells every parameter, :attr:`label` only the changed."""
 
-    name: str
-    params: Any
-
-    def __str__(self) -> str:
-        return spell(self.name, self.params)
-
-    @property
-    def label(self) -> str:
-        """Only the parameters that differ from the defaults (``deliberation:level=half``, or just ``samba``)."""
-        return spell(self.name, self.params, players()[self.name].params())
-
-    def with_params(self, **overrides) -> "PlayerSpec":
-        return PlayerSpec(self.name, replace(self.params, **overrides))
+    registry = PLAYERS
 
     def build(self, field, robot):
         """The ready :class:`~robots.controllers.base.Controller` for ``field`` and ``robot`` — built once per
@@ -88,23 +75,10 @@ class PlayerSpec:
 
 @functools.lru_cache(maxsize=64)
 def _built(spec: PlayerSpec, field, robot):
-    return players()[spec.name].build(spec.params, field=field, robot=robot, spec=str(spec))
+    return PLAYERS[spec.name].build(spec.params, field=field, robot=robot, spec=str(spec))
 
 
-def parse_players(text: str) -> list[PlayerSpec]:
-    """Read ``P1[:k=v,...],P2,...``; raises :class:`InputError` on any fault (module docstring)."""
-    return parse_named(text, "player", players(), make_player)
-
-
-def parse_player(text: str) -> PlayerSpec:
-    """Exactly one player (``ekm match A B``)."""
-    return parse_one(text, "player", parse_players)
-
-
-def make_player(name: str, values: dict[str, str]) -> PlayerSpec:
-    """The :class:`PlayerSpec` of ``name`` with parameters given as text (``{"level": "half"}``)."""
-    known_players = players()
-    if name not in known_players:
-        raise InputError(f"player {name!r}: unknown (choose from {', '.join(known_players)}; ekm players describes "
-                         f"them)")
-    return PlayerSpec(name, typed_params("player", name, known_players[name].params, values))
+#: Read ``P1[:k=v,...],P2,...`` into :class:`PlayerSpec` s (the command line's spelling, :mod:`robots.spelling`).
+parse_players = PlayerSpec.parse
+#: Exactly one player (``ekm match A B``).
+parse_player = PlayerSpec.parse_one

@@ -1,4 +1,4 @@
-"""The Kohonen core shared by the EKMs (ekm.kohonen): angle wrapping, the initial lattice, G(k, i), map units,
+"""The Kohonen core shared by the EKMs (ekm.kohonen): the initial lattice, G(k, i), map units,
 the winner search with the priority set A(α) (Eq. 4.2–4.4) and the input update — known values worked out by
 hand (issue 12, item 5) — and the fast paths, which give what their definitions give, to the bit."""
 
@@ -12,30 +12,12 @@ import pytest
 from ekm.config import EKMConfig
 from ekm.data import load_default_map
 from ekm.kohonen import (forward_prior, initial_weights, neighbourhood, relative, scaled, units, update_inputs, winner,
-                         winner_by_partition, wrap, wrap_near, wrap_once)
+                         winner_by_partition)
 
 PI = math.pi
 
 
 # -------------------------------------------------------------------- angles, lattice, neighbourhood, units
-
-@pytest.mark.parametrize("a, want", [(0.3, 0.3), (PI, PI), (-PI, PI), (1.5 * PI, -0.5 * PI), (-1.5 * PI, 0.5 * PI),
-                                     (2.0 * PI + 0.25, 0.25), (-4.0 * PI - 0.25, -0.25), (0.9 * PI, 0.9 * PI)])
-def test_wrap_maps_angles_to_minus_pi_exclusive_pi_inclusive(a, want):
-    assert float(wrap(jnp.float32(a))) == pytest.approx(want, abs=1e-5)
-
-
-@pytest.mark.parametrize("a, want", [(0.3, 0.3), (1.5 * PI, -0.5 * PI), (-1.5 * PI, 0.5 * PI), (2.0 * PI + 0.25, 0.25),
-                                     (-4.0 * PI - 0.25, -0.25), (0.9 * PI, 0.9 * PI), (-0.9 * PI, -0.9 * PI),
-                                     (5.0 * PI + 0.5, -PI + 0.5), (7.0, 7.0 - 2.0 * PI)])
-def test_wrap_near_rounds_to_the_nearest_turn(a, want):
-    assert float(wrap_near(jnp.float32(a))) == pytest.approx(want, abs=1e-5)
-
-
-def test_wrap_near_keeps_plus_and_minus_pi_as_they_are():
-    assert abs(float(wrap_near(jnp.float32(PI)))) == pytest.approx(PI, abs=1e-6)
-    assert abs(float(wrap_near(jnp.float32(-PI)))) == pytest.approx(PI, abs=1e-6)
-
 
 def test_initial_weights_are_sector_centres_by_row_and_distances_by_column():
     cfg = EKMConfig(neurons=3)
@@ -170,23 +152,8 @@ def test_update_inputs_moves_each_weight_by_eta_g_towards_v_across_the_seam():
 
 # ----------------------------------------------------------------------------------------------- fast paths
 
-# `wrap_once` is `wrap` without the ``mod`` for angles in [-2π, 2π]; `winner` searches nearest first where
-# `winner_by_partition` builds A(α) (Eq. 4.4) from a partition of all angles. Each gives what the
-# definition gives, to the bit.
-
-TWO_PI = np.float32(2 * np.pi)
-
-
-def test_wrap_once_equals_wrap_to_the_bit_on_minus_two_pi_to_two_pi():
-    rng = np.random.default_rng(0)
-    edges = np.array([0.0, -0.0, np.pi, -np.pi, TWO_PI, -TWO_PI, 1e-30, -1e-30, 1e-45, 3 * np.pi / 2], np.float32)
-    near = np.concatenate([np.nextafter(edges, np.float32(np.inf)), np.nextafter(edges, np.float32(-np.inf))])
-    a = np.concatenate([edges, near, rng.uniform(-TWO_PI, TWO_PI, 1_000_000).astype(np.float32),
-                        rng.uniform(-1e-3, 1e-3, 10_000).astype(np.float32)])
-    a = a[np.abs(a) <= TWO_PI]
-    fast, slow = jax.jit(wrap_once)(a), jax.jit(wrap)(a)
-    np.testing.assert_array_equal(np.asarray(fast).view(np.int32), np.asarray(slow).view(np.int32))
-
+# `winner` searches nearest first where `winner_by_partition` builds A(α) (Eq. 4.4) from a partition of all
+# angles: it gives what the definition gives, to the bit.
 
 def random_inputs(rng, n: int, scale: float):
     """``n`` inputs (α, d): uniform directions, distances up to ``scale``, a few exactly on a neuron's weight,

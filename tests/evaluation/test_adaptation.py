@@ -2,8 +2,6 @@
 
 import json
 
-import pytest
-
 from ekm.cli import main
 from evaluation.adaptation import first_step
 

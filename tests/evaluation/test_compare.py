@@ -3,7 +3,8 @@
 
 import pytest
 
-from evaluation.compare import Job, by_architecture, compare, jobs, run_job, summarize, wilson
+from evaluation.batch import run_jobs
+from evaluation.compare import Job, by_architecture, failed_run, jobs, run_job, summarize, wilson
 from evaluation.scenario import ScenarioConfig
 from robots.controllers.spec import parse_architectures
 
@@ -105,19 +106,19 @@ def fake_jobs(n: int, world: str = "w") -> list[Job]:
 
 def test_a_run_whose_worker_dies_is_run_again_and_the_records_keep_the_jobs_order():
     workers = FakeWorkers({1: 2, 4: 1})
-    records = compare(fake_jobs(6), workers)
+    records = run_jobs(fake_jobs(6), workers, failed_run)
     assert [r["trial"] for r in records] == [0, 1, 2, 3, 4, 5] and all(r["reached"] for r in records)
     assert workers.submitted.count(1) == 3 and workers.submitted.count(4) == 2 and workers.renewed == 3
 
 
 def test_a_run_whose_worker_keeps_dying_is_failed_after_the_retries_and_the_rest_finish():
-    records = compare(fake_jobs(3), FakeWorkers({2: 10}, window=1), retries=3)
+    records = run_jobs(fake_jobs(3), FakeWorkers({2: 10}, window=1), failed_run, retries=3)
     assert [r["reached"] for r in records] == [True, True, False]
     assert records[2]["failed"] == "w: its worker died 4 times (Lost)" and records[2]["trial"] == 2
 
 
 def test_a_run_that_raises_is_failed_with_its_exception_in_one_line_naming_the_world():
-    (record,) = compare(fake_jobs(1, world="raises"), FakeWorkers({}))
+    (record,) = run_jobs(fake_jobs(1, world="raises"), FakeWorkers({}), failed_run)
     assert record["failed"] == "raises: RuntimeError: boom" and record["ended"] == "failed"
 
 
@@ -130,14 +131,14 @@ def test_a_pool_that_breaks_while_a_worker_starts_is_renewed_and_the_run_tried_a
             return super().submit(job)
 
     workers = BreaksOnSubmit({("submit", 1): 1})
-    records = compare(fake_jobs(3), workers)
+    records = run_jobs(fake_jobs(3), workers, failed_run)
     assert [r["trial"] for r in records] == [0, 1, 2] and all(r["reached"] for r in records) and workers.renewed == 1
 
 
 def test_runs_already_done_are_not_run_again():
     workers, seen = FakeWorkers({}), []
-    records = compare(fake_jobs(4), workers, lambda i, r: seen.append(i), done={0: {"trial": 0, "old": True},
-                                                                            2: {"trial": 2, "old": True}})
+    records = run_jobs(fake_jobs(4), workers, failed_run, lambda i, r: seen.append(i),
+                       done={0: {"trial": 0, "old": True}, 2: {"trial": 2, "old": True}})
     assert sorted(workers.submitted) == [1, 3] and sorted(seen) == [1, 3]
     assert records[0]["old"] and records[2]["old"] and "old" not in records[1]
 

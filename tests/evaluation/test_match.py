@@ -2,7 +2,7 @@
 the two sides are mirror images of each other, the round robin's pairings and sides, the standings and the
 cross table of hand-made records, and a game that cannot be played is a record, never an exception.
 
-Besides the real players (``schema``, ``ekm``) the tests register tiny fake players in the roster for the
+Besides the real players (``schema``, ``ekm``) the tests register tiny fake players (robots.registry) for the
 length of a test: ``t_constant`` always sends the same wheel command, ``t_seek`` drives to a point of its own
 frame and stops there. With slip-free robots (actuator_noise 0) their games are worked out by hand."""
 
@@ -17,9 +17,8 @@ from evaluation.match import (GameJob, cross_table, play_job, play_match, robot_
                               tournament_jobs)
 from robots.controllers.base import Controller
 from robots.params import KHEPERA
-from robots.soccer import roster
 from robots.soccer.field import Field
-from robots.soccer.roster import PlayerSpec, Player, parse_players
+from robots.soccer.roster import PLAYERS, PlayerSpec, Player, parse_players
 
 C = KHEPERA.max_wheel_speed
 QUIET = dataclasses.replace(KHEPERA, actuator_noise=0.0)  # no slip: both sides' paths are exact
@@ -67,13 +66,10 @@ FAKES = {"t_constant": Player("t_constant", ConstantParams, build_constant, "the
 
 
 @pytest.fixture
-def fakes(monkeypatch):
-    """The roster with the fake players added, for this test only (the roster's cache is put back after)."""
-    try:
-        known = dict(roster.players())
-    except ImportError:  # a player module being written elsewhere: the fakes alone will do
-        known = {}
-    monkeypatch.setattr(roster, "_CACHE", {**known, **FAKES})
+def fakes(registries):
+    """The players' registry with the fake players added, for this test only."""
+    for player in FAKES.values():
+        PLAYERS.register(player)
 
 
 def constant(left, right) -> PlayerSpec:

@@ -4,9 +4,10 @@ comparison's."""
 
 import pytest
 
-from evaluation.compare import compare, jobs, run_job
+from evaluation.batch import run_jobs
+from evaluation.compare import failed_run, jobs, run_job
 from evaluation.scenario import ScenarioConfig
-from evaluation.workers import DaskWorkers, LocalPool
+from evaluation.workers import DaskWorkers, InProcess, LocalPool
 from robots.controllers.spec import parse_architectures
 
 QUICK = ScenarioConfig(time_limit=20.0)
@@ -23,7 +24,7 @@ def test_a_dask_local_cluster_gives_the_same_runs_as_local_processes_even_when_a
     import signal
 
     job_list = jobs(["open-arena", "three-rooms-static"], parse_architectures("fusion,fields"), 2, 0, QUICK)
-    here = compare(job_list)
+    here = run_jobs(job_list, InProcess(run_job), failed_run)
     killed = []
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         def kill_one(i, record):
@@ -34,8 +35,8 @@ def test_a_dask_local_cluster_gives_the_same_runs_as_local_processes_even_when_a
 
         workers = DaskWorkers(run_job, cluster.scheduler_address)
         try:
-            on_dask = compare(job_list, workers)
-            disturbed = compare(job_list, workers, kill_one)
+            on_dask = run_jobs(job_list, workers, failed_run)
+            disturbed = run_jobs(job_list, workers, failed_run, kill_one)
         finally:
             workers.close()
     assert on_dask == here and killed and disturbed == here  # run for run
@@ -58,7 +59,7 @@ def test_a_local_worker_killed_mid_comparison_costs_nothing():
             killed.append(process.pid)
 
     try:
-        disturbed = compare(job_list, pool, kill_one)
+        disturbed = run_jobs(job_list, pool, failed_run, kill_one)
     finally:
         pool.close()
-    assert killed and disturbed == compare(job_list)
+    assert killed and disturbed == run_jobs(job_list, InProcess(run_job), failed_run)

@@ -8,6 +8,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
+from ekm.angles import wrap
 from robots import kinematics
 from robots.geometry import polygon_contains, signed_area
 from robots.params import KHEPERA
@@ -62,7 +63,7 @@ def test_pymunk_robot_traces_the_jitted_jax_kinematics_within_1mm_over_100_targe
     assert sim_traces.shape == jax_traces.shape == (100, n, 3)
     gap = np.linalg.norm(sim_traces[..., :2] - jax_traces[..., :2], axis=-1)  # every sub-step
     assert gap.max() < 1e-3, gap.max()
-    assert np.abs(kinematics.wrap_angle(sim_traces[..., 2] - jax_traces[..., 2])).max() < 1e-3  # heading (rad)
+    assert np.abs(wrap(sim_traces[..., 2] - jax_traces[..., 2])).max() < 1e-3  # heading (rad)
     assert sim.collisions == 0
     path = np.linalg.norm(np.diff(sim_traces.reshape(-1, 3)[:, :2], axis=0), axis=1).sum()
     assert path > 3.0  # the robot really drove (metres), it did not sit still
@@ -95,7 +96,7 @@ def ram(world, aim, steps=1000, seed=0):
     traces = []
     for _ in range(steps):
         x, y, theta = sim.pose
-        err = float(kinematics.wrap_angle(math.atan2(aim[1] - y, aim[0] - x) - theta))
+        err = float(wrap(math.atan2(aim[1] - y, aim[0] - x) - theta))
         turn = float(np.clip(0.1 * err, -2 * C, 2 * C))
         traces.append(sim.step([C - turn, C + turn])[1])
     return sim, np.concatenate(traces)

@@ -4,114 +4,11 @@ slower rate and can interrupt the executor, which runs the one enabled action sc
 
 **Contract** (:mod:`robots.soccer.play`): ``step(state, play) -> (state, wheels)``, jitted; ``play`` is the game in
 the player's own frame — it defends the goal at x = 0 and attacks the goal at x = ``field.length`` — and
-``wheels`` are ``(2,)`` speeds (m/s, left and right) within ±c*. Metres, seconds, radians throughout. The
-camera sees everything exactly (his Vision Engine, §4.1.2), so the player plans from positions: the IR ring
-(``sensors``) is carried but not read — the opponent is avoided from its position, as his collision detection
-did, and the walls bound the plans. Notation: b the ball's centre, v_b its velocity, r the player's centre, θ
-its heading, o the opponent's centre, G = (L, W/2) the opponent's goal centre, H = (0, W/2) the home goal's,
-R the body radius, c = R + ``ball_radius`` the touching distance, c* the top wheel speed.
-
-**The executor** (§4.2.2, Table 3): exactly one schema is enabled, with the run-time parameters that fully
-define it. Sahota's cars track planned arcs; a Khepera turns on the spot, so every schema drives to a point
-by the navigation player's law (:func:`robots.controllers.deliberation.drive_to`: turn ``turn_gain`` · α,
-speed c* · max(0, cos α), or min(c*, d / ``brake_s``) where it must stop there).
-
-=============== =================== ===========================================================================
-schema          parameters          every tick
-=============== =================== ===========================================================================
-``follow path`` a path: up to three follows ``[beside the ball,] approach, end`` (a waypoint is passed within
-                waypoints           ``waypoint``, or once past it along the next leg within ``waypoint`` of
-                                    that leg); slows to the approach point; after the end → stop
-``servo``       none                drives at full speed at where the ball will be when reached (its rolling
-                                    model: straight on, slowing by ``ball_friction``) "until it is struck
-                                    (provided this will advance the ball)": the ball within ``touch`` of
-                                    touching and moving away from the player, or the player no longer behind it
-                                    as seen from G → stop
-``defend``      the line's x        stays on the line between the ball and the net's centre (on the line from H
-                                    to b; for a ball level with the line or behind it, beside it on the net's
-                                    side, c + ``margin`` off, in its way along the goal line); when the ball
-                                    rolling home will cross the line past the body's end (more than R from r),
-                                    at that crossing instead — forwards or backwards, whichever is nearer; at
-                                    the point, turns to face along the line
-``stop``        none                zero; → idle once the player is still (speed < ``still``)
-``idle``        none                zero
-=============== =================== ===========================================================================
-
-Sahota's collision detection subsystem runs beside every moving schema: the opponent's body within ``halt`` of
-the player's on the side it drives to, or in the corridor it sweeps (half-width R + ``margin``) within
-``halt`` + one tick's travel, hands control to stop. Turning on the spot is never stopped.
-
-Paths (the planning of his behaviours, §4.2.3, adapted): a *push* along the unit vector u is ``[A, T]`` with
-the approach point A = b̂ − ``behind`` · u and the end T = b̂ + ``through`` · u (shortened to stay ``R`` inside
-the field), through the ball; b̂ is where the ball will be when the player gets there (the servo's
-prediction). A *go to* P is ``[P, P]``. Either gets a waypoint ``around`` beside the ball first when the
-straight way to its first point passes within c + ``margin`` of the ball (on the side the way passes, the
-field's side if it is out), so no plan pushes the ball the wrong way; a player already lined up between A and
-the ball drives straight on to T. A plan's expected time T_plan is its length / c* plus its turns / (2 c* /
-wheel base), up to the touch for a push.
-
-**The deliberator** (§4.2.3, Table 4): each behaviour selects its schema, plans its parameters and bids in
-[0, 10] — a base bid plus and minus weighted factors in [0, 1], and the log of the plan's expected time. The
-factors (clip to [0, 1]):
-
-- own = clip(1 − b_x / (L/2)), theirs = clip(b_x / (L/2) − 1): the ball deep in the home half, in theirs;
-- slow = clip(ln(1 + T_plan) / ln(1 + ``horizon_s``)): Sahota's log travel-time factor;
-- pressed = clip(1 − |o − b| / ``reach``), close = clip(1 − |r − b| / ``reach``): opponent, player near b;
-- fast = clip(|v_b| / ``fast_ball``); far = clip(|G − b| / L);
-- lined = max(0, unit(G − b) · unit(b − r)): the player is behind the ball as seen from G;
-- near(x) = clip(1 − |r_x − x| / ``band``): the player is on the line at x;
-- feasible: the ball is on the field (0 < b_x < L) and A lies R inside it (or inside the mouths' channel).
-
-=================== ============ ================================================ ==============================
-behaviour           schema       parameters                                       bid
-=================== ============ ================================================ ==============================
-shoot               follow path  push towards G                                   feasible · (8 − 3 slow − 2
-                                                                                  pressed − fast − 2 far)
-clear               follow path  push along b − H (away from the home goal)       feasible · (3 + 6 own − 3 slow
-                                                                                  − fast)
-servo at ball       servo        none                                             lined · (2 + 3 close + 3
-                                                                                  pressed)
-wait                idle         none                                             1
-go red line         follow path  go to (L/2, W/2)                                 (1 + 5 theirs)(1 − near(L/2))
-defend red line     defend       x = L/2                                          (1 + 5 theirs) near(L/2)
-go home line        follow path  go to (``home_line``, W/2)                       (1 + 7 own)(1 − near(home))
-defend home line    defend       x = ``home_line``                                (1 + 7 own) near(home)
-=================== ============ ================================================ ==============================
-
-Sahota gives the form of the bids and the factors of shoot (the ball's speed and heading, the distance to
-the ball, the other car's distance to the ball and its speed; a path plan's log travel time), not their
-numbers: the weights above are ours, chosen so that a planned shot beats the servo's poke when the player has
-the time, a clear beats goalkeeping when the player stands goal-side of a ball in its end, the servo's poke beats the
-slower shot when the opponent presses, and each line's go/defend pair hands over where the player reaches
-the line. The ball's heading enters through the plan (b̂), the opponent's speed not at all. The highest bid
-wins; the ruling behaviour's bid is raised by ``stability`` while its schema runs (§3.3.2: "Behaviours that
-have terminating actions bias their bid upward"; §4.2.3: shoot's "bid is biased upwards when it has begun
-following a path"). The winner's freshly planned action replaces the executor's at every deliberation — the
-ruling one's too, as "it may want to modify the current action to reflect changes in the environment"
-(§3.3.1); a path already under way keeps its progress by the passing rule.
-
-**Sahota's three levels** (§4.3; §5.1, Table 5), the parameter ``level``:
-
-- ``full`` — reactive deliberation: "concurrent deliberation and execution": the deliberator runs every
-  ``period`` s, and at once when the executor is idle, and interrupts the running schema whenever it likes;
-- ``half`` — half-wit: "gives control to the deliberator only when the car is stationary and the idle
-  action schema is active. This occurs either when a schema has terminated or when a set maximum time is
-  exceeded": a schema that has run ``max_s`` hands over to stop, and the deliberator runs only when idle;
-- ``none`` — no-wit: "alternates between offensive and defensive behaviours without any evaluation of the
-  environment" (§4.3; §5.1: it "does not select goals based on the state of the world"): at the half-wit's
-  moments it takes the next of shoot, defend red line, servo at ball, defend home line (Table 4's goals:
-  shoot and advance the ball; forward defence and goalie) without looking at the bids; the behaviour still
-  plans its action from the world.
-
-Defaults: the deliberation ``period`` 0.512 s and ``max_s`` 4.096 s are the navigation player's (Sahota gives
-no rate; his behaviours each compute for at most 0.3 s, alternating with the ruling one, in a game that
-runs about four times faster than ours: his cars cross the field in under 2 s, a Khepera in 7.5 s). The
-distances are a few body radii: ``behind`` 8 cm puts the player 3.5 cm off the ball to line up, ``through``
-15 cm drives on after the touch, ``home_line`` 5 cm stands the goalie just in front of its goal line.
-Shots off a wall (Sahota's shoot may bank) and the opponent in a plan's way are not planned.
-
-Why: Sahota's architecture as he built it for soccer, so the LCI Cup of §4.3 — reactive deliberation against
-its half-wit and no-wit — can be replayed at Khepera scale against the other players.
+``wheels`` are ``(2,)`` speeds (m/s, left and right) within ±c*. Metres, seconds, radians throughout; the IR ring
+is carried but not read (the camera sees everything). The executor's schemas, the behaviours' plans and bids,
+the three levels and the defaults are specified in docs/reproduce/soccer.md ("The players, specified"), in its
+notation: b the ball's centre, r the player's, o the opponent's, G and H the opponent's and the home goal's
+centres, R the body radius, c = R + ``ball_radius``.
 """
 
 from __future__ import annotations
@@ -125,7 +22,8 @@ import jax.numpy as jnp
 
 from robots.controllers.base import Controller, ring
 from robots.controllers.deliberation import drive_to
-from robots.controllers.discrete import bearing, in_the_way, rotate, wheels, wrap
+from ekm.angles import wrap
+from robots.controllers.discrete import bearing, in_the_way, rotate, wheels
 from robots.params import KHEPERA, RobotParams
 from robots.soccer.field import Field
 from robots.soccer.play import Play
@@ -146,8 +44,8 @@ _EPS = 1e-3  # s: a clock within this of a deadline has reached it (float32 game
 
 @dataclass(frozen=True)
 class SoccerDeliberationParams:
-    """The level, the deliberator's rate, the schemas' control law and the plans' and bids' sizes (module
-    docstring: what each does and why its default)."""
+    """The level, the deliberator's rate, the schemas' control law and the plans' and bids' sizes
+    (docs/reproduce/soccer.md: what each does and why its default)."""
 
     sensors: str = field(default="long", metadata={"help": "IR ring carried (not read: the camera sees the "
                                                            "opponent): long or short", "choices": ("short", "long")})
@@ -313,8 +211,8 @@ def _past(r, point, direction, tol):
 
 
 def push_path(pose, ball_at, u, p: SoccerDeliberationParams, field: Field, robot: RobotParams):
-    """A push along ``u`` of the ball (to be) at ``ball_at`` (module docstring): (path ``(4, 2)``, first waypoint,
-    expected time to the touch, whether A lies on the field)."""
+    """A push along ``u`` of the ball (to be) at ``ball_at`` (docs/reproduce/soccer.md): (path ``(4, 2)``, first
+    waypoint, expected time to the touch, whether A lies on the field)."""
     r = pose[:2]
     a = ball_at - p.behind * u
     lo, hi = _f32([robot.radius, robot.radius]), _f32([field.length - robot.radius, field.width - robot.radius])
@@ -341,7 +239,7 @@ def goto_path(pose, ball, point, p: SoccerDeliberationParams, field: Field, robo
 # ------------------------------------------------------------------------------------------ the deliberator
 
 def bid(play: Play, p: SoccerDeliberationParams, field: Field, robot: RobotParams) -> Bids:
-    """Every behaviour's bid, action and plan time for one deliberation (the module docstring's tables)."""
+    """Every behaviour's bid, action and plan time for one deliberation (the tables of docs/reproduce/soccer.md)."""
     pose = _f32(play.pose)
     ball, opp = _f32(play.ball), _f32(play.opponent)
     r, b = pose[:2], ball[:2]
@@ -410,9 +308,9 @@ def deliberate(state: PlayerState, play: Play, p: SoccerDeliberationParams, fiel
 # ------------------------------------------------------------------------------------------ the executor
 
 def defend_point(play: Play, line, p: SoccerDeliberationParams, field: Field, robot: RobotParams):
-    """Defend's point on the line x = ``line`` (module docstring): between the ball and the home net's centre —
-    on the line from one to the other, or, for a ball level with the line or behind it, beside the ball on the
-    net's side (touching distance + ``margin`` from it), in its way along the goal line — or where the ball
+    """Defend's point on the line x = ``line`` (docs/reproduce/soccer.md): between the ball and the home net's
+    centre — on the line from one to the other, or, for a ball level with the line or behind it, beside the ball
+    on the net's side (touching distance + ``margin`` from it), in its way along the goal line — or where the ball
     rolling home will cross the line when that is past the body's end; kept R inside the field."""
     ball, r = _f32(play.ball), _f32(play.pose)[:2]
     bx, by, vx, vy = ball[0], ball[1], ball[2], ball[3]

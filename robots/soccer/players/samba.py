@@ -5,106 +5,8 @@ combined by MAV and arbitrated as his player's tasks, the heaviest action sent t
 game in the player's own frame — it defends the goal at x = 0 and attacks the goal at x = ``field.length``
 — and ``wheels`` are ``(2,)`` speeds (m/s, left and right) within ±c*. Metres, seconds, radians throughout.
 :func:`maps` is the tick without the wheels (pure: a recorded ``(state, play)`` gives the maps the game used).
-
-**Object markers** (§5.1, Table 5) come from the overhead camera, exactly and at once (Riekki's Vision): Ball
-(x, y, vx, vy, radius ``ball_radius``), Opp (x, y, vx, vy, the player's own radius), the two goals, and Me
-(the pose). They are seen from the robot (§3.3.4: robot frame, 0 = ahead, + = left). The IR ring is carried
-(``sensors``) but no map reads it: the ball rolls below it and the opponent is a marker. No map has the
-walls either (Riekki's composite maps have none); the task markers' points below are kept inside the
-field instead. Riekki's markers move at constant velocity. The ball here rolls to a stop (friction
-``rolling_friction``), and a kicked ball is faster than its kicker, so it would stay "out of reach" until
-it slows: for the kick point, the defensive location and the players' times (:func:`chased`) the ball is
-taken at its velocity when a player can touch it before it stops, else at rest where it will stop. The kick
-and Avoid maps, which look at the next touch, use its velocity as it is.
-
-**Primitive maps** (§3.2, Table 6) over a :class:`~robots.controllers.actionmaps.VelocityGrid` of
-``directions`` × ``speeds`` up to c*, on the weight curve of :mod:`~robots.controllers.actionmaps`:
-
-- ``goto_ball`` — GotoBall: OSA for a circular object (§3.2.4, Fig. 24; §5.2: "the OSA method was utilized"),
-  the ball enlarged by the robot's radius and moving at its velocity, so the heaviest action leads a
-  rolling ball to the earliest point it can be met (Fig. 23).
-- **Kicks.** The Khepera has no kicker; it moves the ball by touching it, and the touch sends the ball along
-  the line of centres. So Riekki's impulse maps are read back onto the velocity actions that give the
-  impulses: for every action, the exact first touch of the robot's disc on the moving ball (the separate
-  procedure of §3.2.6, :func:`actionmaps.collision_times`), the line of centres n then, and the ball's
-  velocity after it, v_b + (1 + e)·((v − v_b)·n)·n for a ball much lighter than the robot (``restitution``
-  e). Like his impulse maps they are not propagated (§3.2.5).
-
-  - ``make_goal`` — KicktoGoal/KickFar: the actions whose touch sends the ball across the goal line between
-    the opponent's posts less ``aim_margin``, weighed by the time until the ball is there (the touch, then
-    the ball's flight at its new speed; friction left out) — so a hard, straight kick outweighs a glancing
-    one, as KickFar favours "directing the ball towards the opponents goal at a high speed".
-  - ``dont_kick_opp`` — DontKicktoOpp: −weight of the time until the kicked ball meets the opponent's disc,
-    the opponent keeping its velocity (as his KicktoTeam assumes of a team-mate; his opponents also had a
-    reaction time and a speed of their own, which would make a goalkeeper block every shot at this scale).
-  - ``dribble`` — KickNear: GotoBall filtered (§3.2.8; a mask as Fig. 47, a goal's sector as Fig. 31) to
-    the actions whose touch sends the ball within ``dribble_sector`` of the direction to the goal's centre.
-    Its weights are the times to reach the ball, not the ball's, so no DontKicktoOpp map is combined with
-    it (its times run past the touch and could never win the MAV).
-- ``goto_kick`` — GotoLoc (§5.1: the projecting method for a point): OSA to the **kick point**, ``gap``
-  behind the touching distance on the line from the goal's centre through the ball, moving with the
-  ball — where a player stands to drive through the ball towards the goal.
-- ``goto_defloc`` — GotoDefloc (§5.1, Fig. 45: a default location that moves along a line with the ball):
-  OSA to the **defensive location** on the line from the home goal's centre to the ball, a fraction
-  ``defend_frac`` of the way (at least ``defend_min`` from the goal, never nearer the ball than the kick
-  point), with the navigation Samba's time constraint: speeds above distance / ``brake_s`` filtered, so
-  the player stops there.
-- ``avoid_opp`` — AvoidOpp: "heavy weights only for the actions causing a collision, because in soccer it
-  is important not to avoid other players too much" (§5.1): −weight of the exact time to collision with
-  the opponent's disc grown by ``clearance`` (§3.2.6's separate procedure: no projecting), filtered at
-  ``avoid_ttc`` (§3.2.8, Fig. 30).
-- ``avoid_ball`` — AvoidBall, the same for the ball, filtered at ``ball_ttc`` = 1.5 s as in Riekki's
-  MovetoSpecloc: every move that is not a kick keeps off the ball, for a Khepera touching it *is* kicking.
-
-**Composite maps** (§3.2.7, Table 7) and **the arbiter** (§5.1): the tasks in Riekki's order, the first
-whose valid conditions hold and whose composite map has a positive action is performed (§3.1: "selects
-the best action from the first composite map producing an action good enough"); SpecialSituation,
-LookAround and Pass have no counterpart here (no set pieces, the camera sees everything, no team-mate):
-
-0. ``make_goal`` = MAV(make_goal, dont_kick_opp, AvoidOpp before the touch): valid when a positive action
-   touches the ball within ``kick_s`` (Riekki: "if the ball is near enough, the player kicks it. It favors
-   scoring a goal"). AvoidOpp is filtered to the collisions that come before the touch: the kick maps'
-   times run past it, and a collision after the kick is no reason not to kick.
-1. ``dribble`` = MAV(dribble, AvoidOpp before the touch): valid as make_goal ("if the weight of the best
-   action to score a goal is too low ... the player dribbles the ball"). Riekki's Dribble kicks slowly;
-   here the push is as fast as the touch, a Khepera's touch sends the ball at most ~0.27 m/s.
-2. ``catch_ball`` = MAV(goto_kick, avoid_opp, avoid_ball): gain possession, valid unless the opponent has
-   the ball (Riekki: "if ... no team-mate is nearer the ball, the player tries to gain possession"; in
-   one-on-one the other player nearer is the opponent). A Khepera possesses the ball only from behind, so
-   this is his MovetoSpecloc recipe, MAV(GotoLoc, AvoidOpp, filter(AvoidBall, 1.5)), with the kick point
-   as the special location.
-3. ``defloc`` = MAV(goto_defloc, avoid_opp, avoid_ball): the opponent has the ball — it can be at its kick
-   point (the mirror of ours, on the far side of the ball from our goal) within ``threat_s`` and before
-   the player at its own, and the ball is within ``defend_range`` of the home goal's centre — so back to the
-   defensive location between the ball and the home goal (MovetoDefloc; AvoidBall added so the way back
-   does not push the ball towards the goal). Also the fallback when catch_ball has no positive action.
-   The times are the earliest meetings at c* with the points as they move with the ball
-   (:func:`actionmaps.earliest_collision`), straight lines that ignore turning and going round the ball.
-   Further from the goal, or with the opponent not yet at the ball, the player contests the ball instead:
-   an opponent that stands by the ball (a goalkeeper at its own goal) would otherwise hold it off for ever.
-4. ``turn_to_ball``: Riekki's last task, executed without a map: turn on the spot to face the ball.
-
-"When a task has been selected, it remains active as long as its valid conditions are fulfilled" (§5.1) is
-taken as hysteresis in the conditions: the task of the last tick keeps a kick valid up to ``kick_s +
-stay_s`` and the choice between catching and defending moves only when the other player is ``stay_s``
-ahead. The heaviest action of the chosen composite reaches the wheels as in the navigation Samba
-(:mod:`robots.controllers.samba`): its arbiter's hysteresis on the last direction (``tie``, ``keep``), the
-direction refined between its neighbours, the straight-ahead part of a turn slowed to what the map does
-not inhibit (:func:`~robots.controllers.samba.forward_speed`), then
-:func:`~robots.controllers.base.velocity_to_wheels`.
-
-**Defaults.** Riekki's numbers are for the Soccer Server (players 1.2 m/s, a 105 m field, 10 Hz); at
-Khepera scale (c* = 0.16 m/s, a 1.2 × 0.8 m field, 0.128 s ticks) these are our choices: a 36 × 4 grid
-(10°, 4 cm/s steps — the touch geometry is exact, the grid only samples it, and the chosen direction is
-refined); ``kick_s`` 1 s (16 cm at c*: three ball-and-robot radii, where a straight drive still hits the
-ball where it aims); ``gap`` 2 cm; ``aim_margin`` the ball's radius (the whole ball between the posts);
-``dribble_sector`` 45°; ``avoid_ttc`` 1 s and ``clearance`` 5 mm (Riekki gives AvoidOpp no filter; the
-navigation Samba's 0.5 s is for obstacles that do not come at the robot); ``ball_ttc`` 1.5 s (Riekki's);
-``defend_frac`` ½ and ``defend_min`` 6 cm (half way between goal and ball, as the default locations of
-Fig. 45 follow the ball); ``threat_s`` 1 s (as near its kick point as ``kick_s`` puts a player near the
-ball); ``defend_range`` 0.6 m (our half, measured from the goal's centre); ``stay_s`` 0.5 s;
-``restitution`` 0.7 and ``rolling_friction`` 0.15 m/s² (the ball of :mod:`robots.soccer.ball` and its
-contact with a robot); the weight curve, ``tie``, ``keep`` and ``brake_s`` as the navigation Samba's.
+The object markers, the primitive and composite maps, the arbiter's tasks and the defaults are specified in
+docs/reproduce/soccer.md ("The players, specified").
 """
 
 from __future__ import annotations
@@ -116,6 +18,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
+from ekm.angles import wrap
 from robots.controllers import actionmaps as am
 from robots.controllers import samba as nav
 from robots.controllers.base import Controller, ring, velocity_to_wheels
@@ -123,13 +26,13 @@ from robots.params import KHEPERA, RobotParams
 from robots.soccer.field import Field
 from robots.soccer.play import Play
 
-#: The tasks in the arbiter's order (module docstring); a state's ``task`` indexes this (−1 before the first).
+#: The tasks in the arbiter's order (docs/reproduce/soccer.md); a state's ``task`` indexes this (−1 before the first).
 TASKS = ("make_goal", "dribble", "catch_ball", "defloc", "turn_to_ball")
 
 
 @dataclass(frozen=True)
 class SoccerSambaParams:
-    """Parameters of the Samba soccer player (module docstring: what each does and why its default)."""
+    """Parameters of the Samba soccer player (docs/reproduce/soccer.md: what each does and why its default)."""
 
     sensors: str = field(default="long", metadata={"help": "IR ring carried (no map reads it): long or short",
                                                    "choices": ("short", "long")})
@@ -204,8 +107,8 @@ class SoccerSambaState(NamedTuple):
 
 
 class Tick(NamedTuple):
-    """One tick (:func:`maps`): the state after it; the primitive maps ``(n_dir, n_speed)`` of the module
-    docstring (``avoid_opp`` before its filtering to the collisions before the touch); ``composite``
+    """One tick (:func:`maps`): the state after it; the primitive maps ``(n_dir, n_speed)`` of
+    docs/reproduce/soccer.md (``avoid_opp`` before its filtering to the collisions before the touch); ``composite``
     ``(4, n_dir, n_speed)``, the composite maps of tasks 0–3; ``valid`` ``(5,)``, which tasks could be
     performed; the ``task`` performed, its action (indices ``i, j``, ``direction`` in the robot frame,
     ``speed``); the ``kick_point`` and ``defloc`` ``(2,)`` (field, own frame) and the times ``t_me`` and
@@ -250,7 +153,7 @@ def _inside(point, field: Field, margin: float):
 
 def task_points(ball, p: SoccerSambaParams, field: Field, robot: RobotParams):
     """The task markers (field frame): our kick point, the opponent's (its mirror: behind the ball as seen
-    from our goal) and the defensive location (module docstring)."""
+    from our goal) and the defensive location (docs/reproduce/soccer.md)."""
     b = ball[:2]
     ours, home = jnp.asarray([field.length, 0.5 * field.width]), jnp.asarray([0.0, 0.5 * field.width])
     behind = robot.radius + p.ball_radius + p.gap
@@ -266,7 +169,7 @@ def task_points(ball, p: SoccerSambaParams, field: Field, robot: RobotParams):
 def chased(ball, chaser, p: SoccerSambaParams, robot: RobotParams):
     """The ball marker ``(4,)`` as a player at ``chaser`` (field frame) chases it: at its velocity when the player,
     at c*, can touch it before its rolling friction stops it (after |v| / ``rolling_friction`` s), else at
-    rest where it will stop, |v|² / (2 ``rolling_friction``) further on (module docstring)."""
+    rest where it will stop, |v|² / (2 ``rolling_friction``) further on (docs/reproduce/soccer.md)."""
     if p.rolling_friction == 0:
         return ball
     b, v = ball[:2], ball[2:4]
@@ -299,7 +202,7 @@ def touches(play: Play, p: SoccerSambaParams, robot: RobotParams):
 
 
 def kicks(play: Play, p: SoccerSambaParams, field: Field, robot: RobotParams):
-    """The kick maps' times and masks ``(n_dir, n_speed)`` (module docstring): each action's time to touch the
+    """The kick maps' times and masks ``(n_dir, n_speed)`` (docs/reproduce/soccer.md): each action's time to touch the
     ball; the time the ball then takes, at its speed after the touch, to the goal line (``inf`` if it does not
     go that way); whether it crosses the line between the posts less ``aim_margin`` (make_goal) and whether it
     leaves within ``dribble_sector`` of the direction to the goal's centre (dribble)."""
@@ -311,7 +214,7 @@ def kicks(play: Play, p: SoccerSambaParams, field: Field, robot: RobotParams):
     cross = at[..., 1] + out[..., 1] * jnp.where(forward, flight, 0.0)
     goal = hit & forward & (cross >= y0 + p.aim_margin) & (cross <= y1 - p.aim_margin)
     to_goal = jnp.asarray([field.length, 0.5 * field.width]) - at
-    off = am.wrap(jnp.arctan2(out[..., 1], out[..., 0]) - jnp.arctan2(to_goal[..., 1], to_goal[..., 0]))
+    off = wrap(jnp.arctan2(out[..., 1], out[..., 0]) - jnp.arctan2(to_goal[..., 1], to_goal[..., 0]))
     dribble = hit & (jnp.abs(off) <= p.dribble_sector)
     return t, at, out, flight, goal, dribble
 
@@ -336,7 +239,7 @@ def _seen(play: Play, point, velocity):
 
 def maps(state: SoccerSambaState, play: Play, p: SoccerSambaParams, field: Field = Field(),
          robot: RobotParams = KHEPERA) -> Tick:
-    """The player's maps, the task and the action of one tick (module docstring); pure."""
+    """The player's maps, the task and the action of one tick (docs/reproduce/soccer.md); pure."""
     grid = p.grid(robot)
     ball = jnp.asarray(play.ball, jnp.float32)
     opp = jnp.asarray(play.opponent, jnp.float32)
@@ -401,7 +304,7 @@ def maps(state: SoccerSambaState, play: Play, p: SoccerSambaParams, field: Field
         speed = nav.forward_speed(direction, speed, chosen, grid)
     direction = jnp.where(mapped, direction, jnp.arctan2(b[1], b[0]))
     speed = jnp.where(mapped, speed, 0.0)
-    heading = jnp.where(mapped, am.wrap(theta + direction), state.heading)
+    heading = jnp.where(mapped, wrap(theta + direction), state.heading)
     return Tick(SoccerSambaState(task, heading), goto_ball, make_goal, dont_kick_opp, dribble, goto_kick, goto_defloc,
                 avoid_opp, avoid_ball, composite, valid, task, i, j, direction, speed, kick, defloc, t_me, t_opp)
 

@@ -120,9 +120,9 @@ def _room(field: Field, margin: float):
 def build(params: StrikerParams, field: Field = Field(), robot: RobotParams = KHEPERA, spec: str = "ekm",
           ball: BallParams = BallParams()) -> Controller:
     """The striker driven by ``params.drive`` with its default parameters (the shipped map for an EKM drive)."""
-    from robots.controllers.spec import make_spec
+    from robots.controllers.spec import ArchitectureSpec
 
-    arch = make_spec(params.drive, {})
+    arch = ArchitectureSpec.make(params.drive, {})
     if arch.uses_map:
         from ekm.data import load_default_map
 

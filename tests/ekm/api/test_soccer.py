@@ -7,7 +7,7 @@ import pytest
 
 import ekm
 import evaluation.match as match
-from evaluation.compare import compare
+from evaluation.batch import run_jobs
 from evaluation.match import GameJob, game_failed, play_job, standings
 from evaluation.workers import InProcess
 from robots.soccer.fieldfile import SoccerField, load_field, save_field
@@ -16,7 +16,7 @@ JOB = GameJob("schema", "ekm", ("schema", "ekm"), (0, 1), 0, 0.1, "centre", None
 
 
 def test_the_soccer_functions_are_exported_like_compare():
-    for name in ("match", "MatchResult", "tournament", "TournamentResult", "players", "Players", "soccer_field"):
+    for name in ("match", "MatchResult", "tournament", "TournamentResult", "soccer_field"):
         assert name in ekm.__all__ and getattr(ekm, name).__module__ == "ekm.api.soccer"
     assert ekm.soccer_field() == SoccerField()
 
@@ -25,7 +25,7 @@ def test_the_driver_records_a_game_that_raised_with_the_failed_callable():
     def boom(job):
         raise RuntimeError("boom\nsecond line")
 
-    (record,) = compare([JOB], InProcess(boom), failed=game_failed)
+    (record,) = run_jobs([JOB], InProcess(boom), game_failed)
     assert record["failed"] == "RuntimeError: boom" and record["goals"] is None and record["pair"] == [0, 1]
 
 
@@ -52,7 +52,7 @@ class _Dying:
 
 def test_a_game_whose_worker_keeps_dying_is_tried_again_then_recorded_as_failed():
     workers = _Dying()
-    (record,) = compare([JOB], workers, failed=game_failed, retries=2)
+    (record,) = run_jobs([JOB], workers, game_failed, retries=2)
     assert workers.submitted == 3 and record["failed"] == "its worker died 3 times (OSError)"
     assert record["players"] == ["schema", "ekm"]
 

@@ -4,48 +4,22 @@ entry-point group): listed, spelled NAME:k=v and checked as the built-in ones, r
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import pytest
 
 import ekm
 from ekm.errors import InputError
 from robots.controllers import spec
+from robots.controllers.spec import ARCHITECTURES
 
-ROOT = Path(__file__).resolve().parents[3]
-EXAMPLE = ROOT / "examples" / "wander"
 BUILT_IN = ["fusion", "fields", "samba", "schema", "subsumption", "damn", "deliberation"]
 ENCODING = {"fusion": "continuous", "fields": "continuous", "samba": "discrete", "schema": "continuous",
             "subsumption": "discrete", "damn": "discrete", "deliberation": "discrete"}
 
 
-@pytest.fixture
-def registry():
-    """The registry as it was before the test, afterwards."""
-    saved = dict(spec._ADDED), set(spec._FROM_ENTRY_POINTS), spec._LOADED
-    yield spec
-    spec._ADDED.clear()
-    spec._ADDED.update(saved[0])
-    spec._FROM_ENTRY_POINTS.clear()
-    spec._FROM_ENTRY_POINTS.update(saved[1])
-    spec._LOADED = saved[2]
-
-
-@pytest.fixture
-def installed(tmp_path):
-    """A directory that holds the example package as pip would install it: its module and a dist-info with the
-    entry point (what importlib.metadata reads)."""
-    info = tmp_path / "ekm_wander-0.1.0.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: ekm-wander\nVersion: 0.1.0\n")
-    entry = [line for line in (EXAMPLE / "pyproject.toml").read_text().splitlines() if line.startswith("wander =")]
-    (info / "entry_points.txt").write_text("[ekm.architectures]\n" + entry[0].replace('"', "") + "\n")
-    shutil.copy(EXAMPLE / "ekm_wander.py", tmp_path)
-    return tmp_path
 
 
 
@@ -81,7 +55,7 @@ def build_still(p, ekm_map=None, cfg=None, spec="still", robot=None):
                       step=lambda s, obs: (s, jnp.full(2, p.speed)), params=p, robot=robot)
 
 
-def test_an_architecture_registered_in_python_is_listed_spelled_and_run(registry, cli):
+def test_an_architecture_registered_in_python_is_listed_spelled_and_run(registries, cli):
     ekm.register_architecture("still", StillParams, build_still, "stands still")
     assert "still" in ekm.architectures().names()
     code, out, _ = cli("architectures", "still")
@@ -101,21 +75,21 @@ def test_an_architecture_registered_in_python_is_listed_spelled_and_run(registry
      "every field has a default"),
     (("still", StillParams, "build"), "build must be callable"),
 ])
-def test_a_bad_registration_is_refused_in_one_line(registry, args, message):
+def test_a_bad_registration_is_refused_in_one_line(registries, args, message):
     with pytest.raises(InputError, match=message):
         ekm.register_architecture(*args)
 
 
-def test_an_architecture_says_its_response_encoding_or_nothing(registry):
+def test_an_architecture_says_its_response_encoding_or_nothing(registries):
     with pytest.raises(InputError, match="encoding must be one of continuous, discrete, None, got 'smooth'"):
         ekm.register_architecture("still", StillParams, build_still, encoding="smooth")
     ekm.register_architecture("still", StillParams, build_still, encoding="discrete")
     assert next(r for r in ekm.architectures().rows if r["name"] == "still")["encoding"] == "discrete"
 
 
-def test_an_installed_package_adds_an_architecture_through_its_entry_point(registry, installed, monkeypatch):
-    monkeypatch.syspath_prepend(str(installed))
-    spec._LOADED = False
+def test_an_installed_package_adds_an_architecture_through_its_entry_point(registries, installed, monkeypatch):
+    monkeypatch.syspath_prepend(str(installed("wander")))
+    ARCHITECTURES._loaded = False
     rows = {r["name"]: r for r in ekm.architectures().rows}
     assert rows["wander"]["origin"] == "entry point"
     assert [p["name"] for p in rows["wander"]["parameters"]] == ["speed", "near"]
@@ -124,10 +98,11 @@ def test_an_installed_package_adds_an_architecture_through_its_entry_point(regis
 
 def test_the_example_package_runs_through_ekm_compare_beside_fields(installed):
     """As a user runs it after ``pip install ./examples/wander``: the console script, two worker processes."""
-    env = {**os.environ, "PYTHONPATH": str(installed)}
+    path = installed("wander")
+    env = {**os.environ, "PYTHONPATH": str(path)}
     proc = subprocess.run([sys.executable, "-m", "ekm", "compare", "--worlds", "open-arena", "--architectures",
                            "wander,fields", "--trials", "2", "--workers", "2", "--json"],
-                          capture_output=True, text=True, env=env, cwd=installed)
+                          capture_output=True, text=True, env=env, cwd=path)
     assert proc.returncode == 0, proc.stderr
     rows = {r["architecture"]: r for r in json.loads(proc.stdout)["results"]}
     assert rows["wander"]["success_rate"] == 1.0 and rows["fields"]["success_rate"] == 1.0

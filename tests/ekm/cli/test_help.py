@@ -15,9 +15,9 @@ def subparsers():
 
 
 def test_every_command_is_listed():
-    assert set(subparsers()) == {"worlds", "robots", "plan", "train", "evaluate", "adapt", "architectures", "run",
-                                 "compare", "match", "tournament", "players", "bench"}
-    assert len(COMMANDS) == 13
+    assert set(subparsers()) == {"worlds", "robots", "families", "plan", "train", "evaluate", "adapt", "architectures",
+                                 "run", "compare", "match", "tournament", "players", "bench"}
+    assert len(COMMANDS) == 14
 
 
 @pytest.mark.parametrize("name", sorted(subparsers()))

@@ -1,12 +1,16 @@
 """``ekm match``, ``ekm tournament`` and ``ekm players`` from the command line (and the API under them): a short
 game prints its score, goals and rule and its JSON has every key; a round robin of two players over two seeds is
 3 pairings x 2 = 6 games with its cross table and standings; every bad input is one line and exit status 2 before
-any game starts.
+any game starts; a player of one's own — the example package ``examples/chaser``, through its entry point — plays
+in ``ekm tournament``.
 
 The games here use the ``schema`` and ``ekm`` players (their steps compile once in this test file's process)."""
 
 import json
+import os
 import re
+import subprocess
+import sys
 
 import pytest
 
@@ -109,11 +113,29 @@ def test_players_lists_every_player_with_its_parameters(cli):
     code, out, _ = cli("players")
     assert code == 0
     for name in ("deliberation", "samba", "ekm", "schema"):
-        assert re.search(rf"^{name}$", out, flags=re.M)
+        assert re.search(rf"^{name} \(built in\)$", out, flags=re.M)
     assert re.search(r"^    level += full \[full\|half\|none\]", out, flags=re.M)
     code, out, _ = cli("players", "schema", "--json")
     (row,) = json.loads(out)["players"]
     assert code == 0 and row["name"] == "schema" and {"drive", "push"} <= {p["name"] for p in row["parameters"]}
+
+
+def test_the_example_package_s_player_is_listed_and_plays_in_a_tournament(installed):
+    """As a user runs it after ``pip install ./examples/chaser``: the console script, its entry point read in the
+    command's process (the worker processes of ``ekm compare`` read theirs in tests/ekm/cli/test_architectures.py)."""
+    path = installed("chaser")
+    env = {**os.environ, "PYTHONPATH": str(path)}
+
+    def ekm(*argv):
+        proc = subprocess.run([sys.executable, "-m", "ekm", *argv], capture_output=True, text=True, env=env, cwd=path)
+        assert proc.returncode == 0, proc.stderr
+        return json.loads(proc.stdout)
+
+    (row,) = ekm("players", "chaser", "--json")["players"]
+    assert row["origin"] == "entry point" and [p["name"] for p in row["parameters"]] == ["speed", "gain"]
+    doc = ekm("tournament", "chaser,schema", "--seeds", "2", "--minutes", "0.1", "--workers", "1", "--json")
+    assert doc["players"] == ["chaser", "schema"] and doc["games"] == 6 and "failures" not in doc
+    assert sorted(r["player"] for r in doc["standings"]) == ["chaser", "schema"]
 
 
 @pytest.fixture

@@ -194,12 +194,14 @@ def test_cli_json_and_plot(tmp_path, capsys):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_cli_help_lists_the_families(capsys):
+def test_ekm_families_lists_the_families_and_the_help_of_worlds_points_to_it(capsys):
+    assert main(["families"]) == 0
+    text = capsys.readouterr()[0]
+    for name, family in FAMILIES.all().items():
+        assert f"{name} (built in)\n  " in text and family.summary[:60] in text
     with pytest.raises(SystemExit):
         main(["worlds", "--help"])
-    text = capsys.readouterr()[0]
-    for name, description in FAMILIES.items():
-        assert f"{name}  " in text and description in text
+    assert "ekm families" in capsys.readouterr()[0]
 
 
 @pytest.mark.parametrize("argv, message", [

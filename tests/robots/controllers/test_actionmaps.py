@@ -7,6 +7,7 @@ import jax
 import numpy as np
 import pytest
 
+from ekm.angles import wrap
 from robots.controllers import actionmaps as am
 
 GRID = am.VelocityGrid()  # 72 directions x 8 speeds up to 0.16 m/s
@@ -185,15 +186,15 @@ def test_the_osa_optimal_action_for_a_moving_object_reaches_the_earliest_collisi
     w = np.asarray(J.osa(p, u, GRID))
     i, j = am.best(w)
     assert int(j) == GRID.speeds - 1
-    assert abs(float(am.wrap(GRID.angles()[int(i)] - a_opt))) <= GRID.step_angle
+    assert abs(float(wrap(GRID.angles()[int(i)] - a_opt))) <= GRID.step_angle
 
 
 def test_osa_actions_turning_past_the_optimal_direction_towards_a_moving_object_weigh_zero():
     p, u = np.array([0.6, -0.35], np.float32), np.array([0.0, 0.04], np.float32)  # object right, moving left
     _, _, a_opt = J.optimum(p, u, 0.0, GRID.max_speed)
     w = np.asarray(J.osa(p, u, GRID))
-    delta = np.asarray(am.wrap(GRID.angles() - a_opt))
-    toward = np.sign(float(am.wrap(math.atan2(p[1], p[0]) - a_opt)))  # the object's side of the optimum
+    delta = np.asarray(wrap(GRID.angles() - a_opt))
+    toward = np.sign(float(wrap(math.atan2(p[1], p[0]) - a_opt)))  # the object's side of the optimum
     past = (np.sign(delta) == toward) & (np.abs(delta) > 1e-6)
     assert past.sum() > 10 and np.all(w[past] == 0.0)
     ahead_of_it = (np.sign(delta) == -toward) & (np.abs(delta) < math.radians(85))

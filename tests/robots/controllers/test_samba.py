@@ -10,6 +10,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
+from ekm.angles import wrap
 from ekm.errors import InputError
 from evaluation.scenario import run_architecture, run_scenario
 from robots.controllers import actionmaps as am
@@ -109,7 +110,7 @@ def test_the_arbiters_hysteresis_stops_the_left_right_dithering_behind_an_obstac
     directions move under the tie — without hysteresis the winner flips side tick after tick."""
 
     def flips(log, until_x=0.3):
-        sides = [np.sign(am.wrap(d - tgt[0])) for _, p, d, _, go, _, tgt in log if go and p[0] < until_x]
+        sides = [np.sign(wrap(d - tgt[0])) for _, p, d, _, go, _, tgt in log if go and p[0] < until_x]
         return sum(a != b for a, b in zip(sides, sides[1:]))
 
     with_h, log_h = logged_run(BEHIND, "samba:avoid_ttc=1000")
@@ -162,7 +163,7 @@ def test_fig_31_a_sector_filter_reaches_a_moving_object_while_making_progress_to
                 return sim, o, off
             d, s, g = choose(jnp.asarray(sim.pose, jnp.float32), jnp.asarray(o, jnp.float32),
                              jnp.asarray(obj.velocity(sim.t), jnp.float32), sector)
-            off.append(abs(float(am.wrap(d - g))))
+            off.append(abs(float(wrap(d - g))))
             sim.step(np.asarray(velocity_to_wheels(d, s)), period=KHEPERA.avoid_period)
         raise AssertionError(f"sector {sector}: the object was not reached")
 

@@ -1,4 +1,4 @@
-"""Generated worlds (robots.generator, robots.generator.families): every family makes checked, solvable,
+"""Generated worlds (robots.generator, its families and build): every family makes checked, solvable,
 reproducible worlds with its features; the spellings of a generated world's name."""
 
 import collections
@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from ekm.errors import InputError
-from robots.generator import FAMILIES, generate, parse_spelling
-from robots.generator.families import route_passes, shape_gap, walls_apart
+from robots.generator import FAMILIES, Family, generate, parse_spelling
+from robots.generator.shapes import route_passes, shape_gap, walls_apart
 from robots.generator.reach import reach
 from robots.geometry import Box, Circle, Polygon, Segment, bounds, distance
 from robots.params import KHEPERA
@@ -37,7 +37,7 @@ def ids(case):
 
 def test_the_families_in_order_each_with_a_one_line_description():
     assert list(FAMILIES) == ["corridor", "traps", "clutter", "maze", "movers", "blocked"]
-    assert all(text and "\n" not in text for text in FAMILIES.values())
+    assert all(f.summary and "\n" not in f.summary for f in FAMILIES.all().values())
 
 
 @pytest.mark.parametrize("case", CASES, ids=ids)
@@ -93,25 +93,25 @@ def test_the_numbers_are_rounded_to_a_tenth_of_a_millimetre():
 
 
 def test_a_layout_drawn_again_is_drawn_from_the_next_sub_seed(monkeypatch):
-    from robots.generator import families
+    from robots.generator.layout import Retry
 
-    builder, calls, plain = families.BUILDERS["maze"], [], made("maze", 5)
+    maze, calls, plain = FAMILIES["maze"], [], made("maze", 5)
 
     def first_refused(rng, level):
         calls.append(level)
         if len(calls) % 2:
-            raise families.Retry
-        return builder(rng, level)
+            raise Retry
+        return maze.layout(rng, level)
 
-    monkeypatch.setitem(families.BUILDERS, "maze", first_refused)
+    monkeypatch.setitem(FAMILIES.built_in(), "maze", Family("maze", first_refused, maze.summary))
     a, b = generate("maze", 5), generate("maze", 5)
     assert len(calls) == 4 and world_json(a) == world_json(b) and a != plain
     assert a.difficulty.level == plain.difficulty.level  # the level is the seed's, whatever the attempt
 
 
 def test_a_world_without_a_route_is_never_returned(monkeypatch):
-    from robots.generator import families
     from robots.generator import reach as reach_module
+    from robots.generator.build import ATTEMPTS
 
     real, answers, plain = reach_module.reach, [], made("traps", 3)
 
@@ -123,7 +123,7 @@ def test_a_world_without_a_route_is_never_returned(monkeypatch):
     w = generate("traps", 3)
     assert answers == [False, True] and w != plain and real(w).solvable
     monkeypatch.setattr(reach_module, "reach", lambda world, **kw: reach_module.Reach(False, 1.0))
-    with pytest.raises(RuntimeError, match=f"no solvable layout in {families.ATTEMPTS} attempts"):
+    with pytest.raises(RuntimeError, match=f"no solvable layout in {ATTEMPTS} attempts"):
         generate("traps", 3)
 
 
