@@ -23,6 +23,7 @@ function                               returns                     command line
 ``robots(check=None)``                 :class:`Robots`             ``ekm robots``
 ``families()``                         :class:`Families`           ``ekm families``
 ``register_family(name, ...)``         (a family)                  (entry points: ``ekm.families``)
+``register_robot(name, robot)``        ``RobotParams``             (entry points: ``ekm.robots``)
 ``plan(world, start, goal, ...)``      :class:`Plan`               ``ekm plan``
 ``run(world, architecture, ...)``      :class:`Outcome`            ``ekm run``
 ``compare(worlds, architectures)``     :class:`Table`              ``ekm compare``
@@ -60,7 +61,7 @@ _EXPORTS = {
     "register_architecture": "ekm.api.catalogue", "Architecture": "ekm.api.catalogue",
     "players": "ekm.api.catalogue", "Players": "ekm.api.catalogue", "register_player": "ekm.api.catalogue",
     "Player": "ekm.api.catalogue", "families": "ekm.api.catalogue", "Families": "ekm.api.catalogue",
-    "register_family": "ekm.api.catalogue", "Family": "ekm.api.catalogue",
+    "register_family": "ekm.api.catalogue", "Family": "ekm.api.catalogue", "register_robot": "ekm.api.catalogue",
     "match": "ekm.api.soccer", "MatchResult": "ekm.api.soccer", "tournament": "ekm.api.soccer",
     "TournamentResult": "ekm.api.soccer", "soccer_field": "ekm.api.soccer",
     "InputError": "ekm.errors", "Interrupted": "ekm.errors",

@@ -49,9 +49,9 @@ class Job:
         """The run as its results-file line names it (:mod:`evaluation.results`)."""
         from ekm import __version__
 
-        from robots.params import KHEPERA
+        from robots.robotfile import robot_from_json
 
-        robot = _robot(self.robot) or KHEPERA
+        robot = robot_from_json(self.robot)
         return {"world": self.world, "architecture": self.architecture, "label": self.label, "trial": self.trial,
                 "seed": self.seed, "map": self.map_path, "robot": robot.name, "robot_fingerprint": robot.fingerprint,
                 "learn": self.learn, "ekm_version": __version__}
@@ -83,6 +83,7 @@ def run_job(job: Job) -> dict:
     from evaluation.scenario import run_architecture
     from robots.controllers.spec import parse_architecture
     from robots.registry import adopt
+    from robots.robotfile import robot_from_json
 
     world, family = None, None
     try:
@@ -101,7 +102,7 @@ def run_job(job: Job) -> dict:
 
             learn = parse_learning(job.learn)
         rec = run_architecture(world, spec, maps, seed=job.seed, config=job.config, source=job.map_path or "",
-                               robot=_robot(job.robot), learn=learn)
+                               robot=robot_from_json(job.robot), learn=learn)
     except Exception as exc:
         text = str(exc).splitlines()[0] if str(exc) else ""
         reason = text if isinstance(exc, InputError) else f"{type(exc).__name__}: {text}".rstrip(": ")
@@ -121,18 +122,6 @@ def _world(spelling: str):
     from robots.worldfile import load_world
 
     return load_world(spelling)
-
-
-@functools.lru_cache(maxsize=16)
-def _robot(document: str | None):
-    """The robot of a job (None: the Khepera), read once per worker process."""
-    if document is None:
-        return None
-    import json
-
-    from robots.robotfile import parse_robot
-
-    return parse_robot(json.loads(document), "job robot")
 
 
 def world_family(world) -> str | None:

@@ -51,18 +51,22 @@ class MatchRecord:
     times: np.ndarray = _f(default_factory=lambda: np.zeros(0))
     poses: np.ndarray = _f(default_factory=lambda: np.zeros((0, 2, 3)))
     ball: np.ndarray = _f(default_factory=lambda: np.zeros((0, 2)))
+    robots: tuple[str, str] = ("khepera", "khepera")  # the robot each side played on (robots.robotfile)
+    robot_fingerprints: tuple[str, str] = (KHEPERA.fingerprint, KHEPERA.fingerprint)
 
     def outcome(self) -> dict:
         """The ``ekm match --json`` record: ``players`` (side 0 first), ``specs``, ``seed``, ``minutes``, ``rule``,
         ``goals`` ``[side 0, side 1]``, ``winner`` (0, 1 or None for a draw), ``goal_times`` ``[[t, side], …]``,
         ``collisions`` (contact episodes of each robot with walls or the other robot), ``ball_in_half_s``
         (s the ball spent in each side's own half: a large share in your half is pressure on your goal) and
-        ``restarts`` (dead-ball restarts, :mod:`robots.soccer.game`)."""
+        ``restarts`` (dead-ball restarts, :mod:`robots.soccer.game`), ``robots`` and ``robot_fingerprints`` (what
+        each side played on)."""
         a, b = self.goals
         return {"players": list(self.players), "specs": list(self.specs), "seed": self.seed, "minutes": self.minutes,
                 "rule": self.rule, "goals": [a, b], "winner": 0 if a > b else 1 if b > a else None,
                 "goal_times": [[round(t, 3), s] for t, s in self.goal_log], "collisions": list(self.collisions),
-                "ball_in_half_s": [round(s, 3) for s in self.ball_in_half_s], "restarts": len(self.restarts)}
+                "ball_in_half_s": [round(s, 3) for s in self.ball_in_half_s], "restarts": len(self.restarts),
+                "robots": list(self.robots), "robot_fingerprints": list(self.robot_fingerprints)}
 
 
 def robot_seeds(seed: int) -> list[int]:
@@ -75,10 +79,12 @@ def play_match(first, second, *, field: Field = Field(), ball: BallParams = Ball
     """Play ``first`` (side 0) against ``second`` (side 1) for ``minutes`` of game time (module docstring).
 
     ``first``, ``second``: :class:`robots.soccer.roster.PlayerSpec` (or their spellings, ``"deliberation:level=half"``).
-    ``on_tick(t)`` is called after every tick (progress bars). Bad input raises :class:`ekm.errors.InputError`.
+    ``robot``: the :class:`~robots.params.RobotParams` both play on, or a pair, side 0's first
+    (:func:`robots.soccer.game.robot_list`). ``on_tick(t)`` is called after every tick (progress bars). Bad input
+    raises :class:`ekm.errors.InputError`.
     """
     from ekm.errors import InputError
-    from robots.soccer.game import Game
+    from robots.soccer.game import Game, robot_list
     from robots.soccer.play import Play, own_frame
     from robots.soccer.roster import parse_player
 
@@ -87,10 +93,11 @@ def play_match(first, second, *, field: Field = Field(), ball: BallParams = Ball
         raise InputError(f"match: minutes must be a positive number, got {minutes!r}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise InputError(f"match: seed must be a non-negative integer, got {seed!r}")
-    controllers = [s.build(field, robot) for s in specs]
-    game = Game(field, ball, 2, robot_seeds(seed), robot, kickoff=kickoff, rule=rule)
+    robots = robot_list(robot, 2)
+    controllers = [s.build(field, r) for s, r in zip(specs, robots)]
+    game = Game(field, ball, 2, robot_seeds(seed), robots, kickoff=kickoff, rule=rule)
     states = [c.init() for c in controllers]
-    period = robot.avoid_period
+    period, dt = robots[0].avoid_period, robots[0].dt
     ticks = max(1, round(minutes * 60.0 / period))
     f32 = np.float32
     times = np.empty(ticks + 1)
@@ -116,14 +123,16 @@ def play_match(first, second, *, field: Field = Field(), ball: BallParams = Ball
             commands.append(np.asarray(command, dtype=float))
         game.step(commands, period)
         bx = game.ball_trace[:, 0]
-        in_half[0] += float(np.count_nonzero(bx < mid)) * robot.dt
-        in_half[1] += float(np.count_nonzero(bx > mid)) * robot.dt
+        in_half[0] += float(np.count_nonzero(bx < mid)) * dt
+        in_half[1] += float(np.count_nonzero(bx > mid)) * dt
         if on_tick is not None:
             on_tick(game.t)
     return MatchRecord(players=(specs[0].label, specs[1].label), specs=(str(specs[0]), str(specs[1])), seed=int(seed),
                        minutes=float(minutes), rule=rule, field=field, goals=game.score.goals,
                        goal_log=list(game.goals), collisions=tuple(r.collisions for r in game.robots),
-                       ball_in_half_s=(in_half[0], in_half[1]), restarts=list(game.restarts), times=times, poses=poses, ball=balls)
+                       ball_in_half_s=(in_half[0], in_half[1]), restarts=list(game.restarts), times=times, poses=poses,
+                       ball=balls, robots=tuple(r.name for r in robots),
+                       robot_fingerprints=tuple(r.fingerprint for r in robots))
 
 
 # --------------------------------------------------------------------------------------------- the round robin
@@ -132,7 +141,8 @@ class GameJob:
     """One game of a round robin, as plain values (it pickles to any process or machine): the two players'
     spellings and labels (side 0 first), which pairing (``pair``: indices into the players, row first) and
     settings; ``field_path``: a field file, or None for the default field; ``added``: what was registered in the
-    parent process (:func:`robots.registry.added_here`: a player of a script), for the worker to register too."""
+    parent process (:func:`robots.registry.added_here`: a player of a script), for the worker to register too;
+    ``robots``: each side's robot as its file's text (:func:`robots.robotfile.robot_json`), None for the Khepera."""
 
     first: str
     second: str
@@ -143,31 +153,39 @@ class GameJob:
     rule: str
     field_path: str | None = None
     added: tuple = ()
+    robots: tuple = (None, None)
 
     def identity(self) -> dict:
         """The game as its results-file line names it (:mod:`evaluation.results`)."""
         from ekm import __version__
+        from robots.robotfile import robot_from_json
 
         return {"first": self.first, "second": self.second, "labels": list(self.labels), "pair": list(self.pair),
                 "seed": self.seed, "minutes": self.minutes, "rule": self.rule, "field_path": self.field_path,
-                "ekm_version": __version__}
+                "robots": [robot_from_json(r).name for r in self.robots], "ekm_version": __version__}
 
 
-def tournament_jobs(specs, seeds, minutes: float, rule: str = "centre", field_path: str | None = None) -> list[GameJob]:
+def tournament_jobs(specs, seeds, minutes: float, rule: str = "centre", field_path: str | None = None,
+                    robots=None, labels=None) -> list[GameJob]:
     """Every pairing ``(i, j)``, ``i <= j`` (self-play included), once per seed in ``seeds``; for ``i < j`` player i
-    plays side 0 on even seeds and side 1 on odd ones."""
+    plays side 0 on even seeds and side 1 on odd ones. ``robots``: each player's
+    :class:`~robots.params.RobotParams` (None: all on the Khepera); ``labels``: the players' labels (default
+    their spellings')."""
     from robots.registry import added_here
+    from robots.robotfile import robot_json
 
     added = added_here()
+    labels = [s.label for s in specs] if labels is None else list(labels)
+    texts = [None] * len(specs) if robots is None else [robot_json(r) for r in robots]
     jobs = []
     for i, a in enumerate(specs):
         for j in range(i, len(specs)):
             b = specs[j]
             for s in seeds:
                 swap = i != j and s % 2 == 1
-                one, two = (b, a) if swap else (a, b)
-                jobs.append(GameJob(str(one), str(two), (one.label, two.label), (i, j), int(s), float(minutes), rule,
-                                    field_path, added))
+                one, two = (j, i) if swap else (i, j)
+                jobs.append(GameJob(str(specs[one]), str(specs[two]), (labels[one], labels[two]), (i, j), int(s),
+                                    float(minutes), rule, field_path, added, (texts[one], texts[two])))
     return jobs
 
 
@@ -176,12 +194,13 @@ def play_job(job: GameJob) -> dict:
     cannot be played is a record with ``failed`` (the reason in one line) and no goals."""
     from ekm.errors import InputError
     from robots.registry import adopt
+    from robots.robotfile import robot_from_json
 
     try:
         adopt(job.added)
         field, ball, kickoff = (Field(), BallParams(), None) if job.field_path is None else _field(job.field_path)
         rec = play_match(job.first, job.second, field=field, ball=ball, minutes=job.minutes, seed=job.seed,
-                         rule=job.rule, kickoff=kickoff)
+                         rule=job.rule, kickoff=kickoff, robot=[robot_from_json(r) for r in job.robots])
         out = rec.outcome()
     except Exception as exc:
         text = str(exc).splitlines()[0] if str(exc) else ""

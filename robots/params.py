@@ -74,6 +74,11 @@ class RobotParams:
     about: str = "the thesis's Khepera: 25 mm radius, 53 mm wheel base, 0.16 m/s, 10 % slip and IR noise"
 
     @property
+    def summary(self) -> str:
+        """:attr:`about`: the one line ``ekm robots`` shows (:mod:`robots.registry`)."""
+        return self.about
+
+    @property
     def gained(self) -> bool:
         """Whether a wheel's speed differs from its motor's (``wheel_gain`` other than 1, 1)."""
         return tuple(self.wheel_gain) != (1.0, 1.0)

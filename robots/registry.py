@@ -1,11 +1,12 @@
-"""Everything a user can add — architectures, soccer players, world families — kept one way: a :class:`Registry`
-per kind, made in one call beside the kind's class (docs/design.md §1, "How to add a thing").
+"""Everything a user can add — architectures, soccer players, world families, robots — kept one way: a
+:class:`Registry` per kind, made in one call beside the kind's class (docs/design.md §1, "How to add a thing").
 
 A thing of any kind is a frozen dataclass with a ``name`` and a one-line ``summary`` (:class:`Architecture
 <robots.controllers.spec.Architecture>`, :class:`Player <robots.soccer.roster.Player>`, :class:`Family
-<robots.generator.Family>`). A registry holds, in this order, the package's own (built in), those of installed
-packages — the entry-point group ``ekm.<kinds>``, each entry point naming a thing or a function without
-arguments that returns one, loaded once on first use — and those added in this process with
+<robots.generator.Family>`, :class:`RobotParams <robots.params.RobotParams>`). A registry holds, in this order,
+the package's own (built in), those of installed packages — the entry-point group ``ekm.<kinds>``, each entry
+point naming a thing or a function without arguments that returns one, loaded once on first use — and those
+added in this process with
 :meth:`Registry.register`. A built-in name cannot be taken; registering a name again replaces what was added
 under it. ``ekm.register_<kind>`` adds one, ``ekm <kinds>`` lists them (:mod:`ekm.api.catalogue`).
 

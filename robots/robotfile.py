@@ -22,6 +22,7 @@ Every problem raises :class:`ekm.errors.InputError` with one line naming the fil
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import re
@@ -31,6 +32,7 @@ from pathlib import Path
 
 from ekm.errors import InputError
 from robots.params import KHEPERA, RobotParams, SensorSet
+from robots.registry import Registry
 from robots.worldfile import _Checker as Checker
 from robots.worldfile import decode, read_text
 
@@ -123,11 +125,34 @@ def robot_json(robot: RobotParams) -> str:
     return "{\n" + ",\n".join(lines) + "\n}\n"
 
 
-def named_robots() -> list[str]:
-    """Names of the robots shipped with the package (``robots/models/*.json``), the Khepera first, then sorted."""
+@functools.lru_cache(maxsize=16)
+def robot_from_json(text: str | None) -> RobotParams:
+    """The robot of a robot file's text (:func:`robot_json`; what a job carries to its worker), None for the
+    Khepera — read once per process."""
+    return KHEPERA if text is None else parse_robot(json.loads(text), "job robot")
+
+
+def _shipped() -> list[RobotParams]:
+    """The robots shipped with the package (``robots/models/*.json``), the Khepera first, then by name."""
     files = resources.files("robots.models").iterdir()
     names = sorted(f.name[:-5] for f in files if f.name.endswith(".json"))
-    return sorted(names, key=lambda n: n != KHEPERA.name)
+    return [parse_robot(decode(resources.files("robots.models").joinpath(f"{n}.json").read_text(), f"{n}.json"),
+                        f"{n}.json") for n in sorted(names, key=lambda n: n != KHEPERA.name)]
+
+
+def _check_registered(robot: RobotParams) -> None:
+    """A robot added in Python or by an installed package is checked key by key as a robot file is."""
+    parse_robot(robot_document(robot), f"robot {robot.name}")
+
+
+#: The named robots (:mod:`robots.registry`): the package's own, then those of installed packages (entry-point
+#: group ``ekm.robots``, each naming a :class:`RobotParams`), then those added with ``ekm.register_robot``.
+ROBOTS = Registry("robot", "robots", RobotParams, _shipped, _check_registered)
+
+
+def named_robots() -> list[str]:
+    """Names of the named robots (:data:`ROBOTS`), the Khepera first."""
+    return ROBOTS.names()
 
 
 def load_robot(robot) -> RobotParams:
@@ -139,9 +164,9 @@ def load_robot(robot) -> RobotParams:
         return robot
     source = str(robot)
     path = Path(source)
-    if path.suffix != ".json" and not path.exists() and source in named_robots():
-        text = resources.files("robots.models").joinpath(f"{source}.json").read_text()
-    elif path.is_file():
+    if path.suffix != ".json" and not path.exists() and source in ROBOTS:
+        return ROBOTS[source]
+    if path.is_file():
         text = read_text(path, source, "robot")
     else:
         raise InputError(f"{source}: no such robot file or named robot (named robots: {', '.join(named_robots())})")

@@ -47,10 +47,11 @@ def _restore_cpu_affinity():
 
 @pytest.fixture
 def registries():
-    """Every registry (architectures, players, families) as it was before the test, afterwards: what the test
+    """Every registry (architectures, players, families, robots) as it was before the test, afterwards: what the test
     registered is gone, and the entry points are read again on next use."""
     import robots.controllers.spec  # noqa: F401  (each kind's registry is made when its module is imported)
     import robots.generator  # noqa: F401
+    import robots.robotfile  # noqa: F401
     import robots.soccer.roster  # noqa: F401
     from robots.registry import KINDS
 

@@ -1,10 +1,12 @@
 """Everything you can add, in Python: the catalogues :func:`architectures`, :func:`players` and :func:`families`
-(``ekm architectures``, ``ekm players``, ``ekm families``), and :func:`register_architecture`,
-:func:`register_player` and :func:`register_family`, which add your own beside the package's.
+(``ekm architectures``, ``ekm players``, ``ekm families``; the robots are listed by :func:`ekm.robots`), and
+:func:`register_architecture`, :func:`register_player`, :func:`register_family` and :func:`register_robot`, which
+add your own beside the package's.
 
 Each kind is one registry (:class:`robots.registry.Registry`): the package's own, then those of installed
-packages — the entry-point groups ``ekm.architectures``, ``ekm.players`` and ``ekm.families``, each entry point
-naming an :class:`Architecture`, a :class:`Player` or a :class:`Family` — then those registered in this process.
+packages — the entry-point groups ``ekm.architectures``, ``ekm.players``, ``ekm.families`` and ``ekm.robots``,
+each entry point naming an :class:`Architecture`, a :class:`Player`, a :class:`Family` or a
+:class:`~robots.params.RobotParams` — then those registered in this process.
 Every ``register_*`` has one shape: the thing made already, or its name and its fields in their order. What you
 register in a script goes to ``ekm.compare``'s and ``ekm.tournament``'s worker processes with their jobs, so
 define its functions and parameter classes at the top level of a module (or of the script), where pickle finds
@@ -22,7 +24,7 @@ from robots.generator import Family
 from robots.soccer.roster import Player
 
 __all__ = ["Architecture", "Architectures", "Families", "Family", "Player", "Players", "architectures", "families",
-           "players", "register_architecture", "register_family", "register_player"]
+           "players", "register_architecture", "register_family", "register_player", "register_robot"]
 
 
 @dataclass(frozen=True)
@@ -200,3 +202,47 @@ def register_family(name, layout=None, summary: str = ""):
     from robots.generator import FAMILIES
 
     return _register(FAMILIES, name, lambda: Family(name, layout, summary))
+
+
+def register_robot(name, robot=None, summary: str = ""):
+    """Add a robot under ``name``, for every ``robot=`` (``--robot NAME`` in this process) and :func:`ekm.robots`.
+
+    Parameters
+    ----------
+    name : str or RobotParams
+        As :func:`register_architecture`'s; or a :class:`~robots.params.RobotParams` made already, under its own
+        name (what an entry point of the group ``ekm.robots`` names), and nothing else.
+    robot : RobotParams, dict or path
+        The robot: parameters, a robot-file document (keys left out are the Khepera's) or a robot file
+        (:mod:`robots.robotfile`); checked key by key as a robot file is.
+    summary : str
+        One line for ``ekm robots`` (default the robot's own ``about``).
+
+    Returns
+    -------
+    RobotParams
+        What was registered.
+
+    Examples
+    --------
+    ::
+
+        ekm.register_robot("heavy", {"motor_tau": 0.08, "max_wheel_speed": 0.12}, "a slow, heavy Khepera")
+        ekm.compare(["three-rooms"], "fields,samba", robot="heavy", learn=True)
+    """
+    from dataclasses import replace
+
+    from robots.robotfile import ROBOTS, load_robot, parse_robot
+
+    def make():
+        if isinstance(robot, dict):
+            made = parse_robot({**robot, "name": name}, f"robot {name}")
+        elif robot is None:
+            from ekm.errors import InputError
+
+            raise InputError(f"register_robot: robot {name!r} needs its parameters (a RobotParams, a dict or a file)")
+        else:
+            made = load_robot(robot)
+        return replace(made, name=name, about=summary or made.about)
+
+    return _register(ROBOTS, name, make)

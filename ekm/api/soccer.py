@@ -60,6 +60,22 @@ def _rule(rule, soccer, prog: str) -> str:
     return soccer.rule if rule is None else choice(rule, RULES, "--rule", prog)
 
 
+def _robots(robot, players: int, prog: str) -> list:
+    """``robot`` — None (the Khepera), one robot for every player, or one per player in order; each a named robot,
+    a robot file or a :class:`~robots.params.RobotParams` — as one RobotParams per player."""
+    from robots.robotfile import load_robot
+
+    if robot is None or isinstance(robot, (str, Path)) or not hasattr(robot, "__len__"):
+        return [load_robot(robot)] * players
+    robots = [load_robot(r) for r in robot]
+    if len(robots) == 1:
+        return robots * players
+    if len(robots) != players:
+        raise InputError(f"{prog}: --robot: give one robot for every player or one per player ({players}), got "
+                         f"{len(robots)}")
+    return robots
+
+
 # ------------------------------------------------------------------------------------------------- one game
 
 @dataclass(frozen=True)
@@ -108,7 +124,7 @@ class MatchResult(Result):
 
 
 def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 0, rule: str | None = None,
-          progress: bool = False) -> MatchResult:
+          robot=None, progress: bool = False) -> MatchResult:
     """Play ``first`` against ``second`` for ``minutes`` of game time on ``field``.
 
     Parameters
@@ -126,6 +142,9 @@ def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 
         its players, field, minutes, rule and seed.
     rule : {"centre", "sahota"}, optional
         The restart after a goal (:data:`RULE_TEXT`); default the field's.
+    robot : str, path, RobotParams or a pair of them, optional
+        The robot both players play on (a named robot, ``ekm robots``, or a robot file), or one per player,
+        ``first``'s first; default the Khepera. Robots of one game share the control period and sub-step.
     progress : bool, default False
         Show a progress bar in game seconds on stderr.
 
@@ -150,7 +169,6 @@ def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 
     """
     from ekm import interrupts
     from evaluation.match import play_match
-    from robots.params import KHEPERA
     from robots.soccer.fieldfile import load_field
 
     specs = [_spec(first, "first"), _spec(second, "second")]
@@ -158,7 +176,8 @@ def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 
     seed = whole(seed, "--seed", _MATCH, strict=False)
     soccer = load_field(field)
     rule = _rule(rule, soccer, _MATCH)
-    period = KHEPERA.avoid_period  # the game's tick (evaluation.match.play_match): it ends on a whole tick
+    robots = _robots(robot, 2, _MATCH)
+    period = robots[0].avoid_period  # the game's tick (evaluation.match.play_match): it ends on a whole tick
     total = round(max(1, round(60.0 * minutes / period)) * period, 3)
     bar = None
     if progress:
@@ -176,7 +195,7 @@ def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 
 
     try:
         rec = play_match(specs[0], specs[1], field=soccer.field, ball=soccer.ball, minutes=minutes, seed=seed,
-                         rule=rule, kickoff=soccer.kickoff, on_tick=on_tick)
+                         rule=rule, kickoff=soccer.kickoff, on_tick=on_tick, robot=robots)
     except KeyboardInterrupt:
         raise Interrupted(f"match stopped at {now[0]:.1f} s of {60.0 * minutes:g} s of game time; nothing was "
                           f"written") from None
@@ -268,7 +287,7 @@ def _cross_rows(records, labels) -> list[dict]:
 
 def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.0, seeds: int = 10, seed: int = 0,
                rule: str | None = None, workers: int | None = None, scheduler: str | None = None, out=None,
-               resume=None, progress: bool = False) -> TournamentResult:
+               resume=None, robot=None, progress: bool = False) -> TournamentResult:
     """Play a round robin in parallel: every pair of ``players`` (and each player against itself) ``seeds`` times,
     and rank the players with 95 % intervals.
 
@@ -303,6 +322,10 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     resume : path, optional
         A results file of an interrupted tournament with the same settings, instead of ``out``: its games are
         kept, the missing ones are played and appended, and the result is the uninterrupted tournament's.
+    robot : str, path, RobotParams or a list of them, optional
+        The robot every player plays on, or one per player in the order of ``players`` (default the Khepera).
+        Where the players' robots differ, each label ends in ``@ROBOT`` (``deliberation@worn-wheel``): the same
+        player may then enter on two robots.
     progress : bool, default False
         Show a progress bar (games done, failed, time left) on stderr.
 
@@ -342,9 +365,11 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     else:
         specs = [_spec(p, "players") for p in players]
         text = ",".join(s.label for s in specs)
-    labels = [s.label for s in specs]
     if len(specs) < 2:
         raise InputError(f"players {text!r}: a tournament needs at least two players")
+    robots = _robots(robot, len(specs), _TOURNAMENT)
+    mixed = len({r.fingerprint for r in robots}) > 1 or len({r.name for r in robots}) > 1
+    labels = [f"{s.label}@{r.name}" if mixed else s.label for s, r in zip(specs, robots)]
     if len(set(labels)) != len(labels):
         twice = next(x for x in labels if labels.count(x) > 1)
         raise InputError(f"players {text!r}: player {twice!r} is named twice")
@@ -356,10 +381,11 @@ def tournament(players=DEFAULT_PLAYERS, *, field="lci-cup", minutes: float = 10.
     soccer = load_field(field)
     spelling = _field_spelling(field, soccer)
     rule = _rule(rule, soccer, _TOURNAMENT)
-    job_list = tournament_jobs(specs, range(seed, seed + seeds), minutes, rule, spelling)
+    job_list = tournament_jobs(specs, range(seed, seed + seeds), minutes, rule, spelling, robots, labels)
     settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)
         "tournament": [str(s) for s in specs], "labels": labels, "seeds": seeds, "seed": seed, "minutes": minutes,
-        "rule": rule, "field": spelling, "ekm_version": _version()}))
+        "rule": rule, "field": spelling,
+        "robots": [{"name": r.name, "fingerprint": r.fingerprint} for r in robots], "ekm_version": _version()}))
     pool = workers_for(play_job, workers, scheduler)
     t0 = time.perf_counter()
     records = run_batch(TOURNAMENT, job_list, pool, settings, out=out, resume=resume, progress=progress)

@@ -7,8 +7,12 @@ from ekm.cli.args import command, nonneg_int, one_of, output_path, positive_floa
 
 
 def add_field_option(p) -> None:
-    """``--field`` and ``--rule``, shared with ``ekm tournament``."""
+    """``--field``, ``--rule`` and ``--robot``, shared with ``ekm tournament``."""
     from robots.soccer.referee import RULES
+
+    p.add_argument("--robot", action="append", metavar="NAME|FILE",
+                   help="the robot the players play on: a named robot or a robot file (default khepera; ekm robots "
+                        "lists them); once for every player, or once per player in their order")
 
     p.add_argument("--field", default="lci-cup", metavar="NAME|FILE",
                    help="a named field or a field file: pitch, ball, kick-off poses and rule (default lci-cup; "
@@ -23,7 +27,8 @@ def add_parser(sub) -> None:
     p = command(sub, "match", "play one game of robot soccer between two players and print the score",
                 ["ekm match deliberation deliberation:level=half",
                  "ekm match ekm schema --minutes 2 --seed 3 --plot match.png --gif match.gif",
-                 "ekm match samba deliberation --rule sahota --field my-pitch.json --json"],
+                 "ekm match samba deliberation --rule sahota --field my-pitch.json --json",
+                 "ekm match deliberation deliberation --robot khepera --robot worn-wheel"],
                 more="The players and their parameters: ekm players. The first player plays side 0 and defends the "
                      "goal at x = 0. Field files and the rules: docs/guide/soccer.md.")
     p.add_argument("first", metavar="A", help="the player of side 0, NAME[:k=v,...] (ekm players lists them)")
@@ -46,7 +51,7 @@ def run(args) -> None:
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
     pin_to_one_cpu()  # one game, one thread of work: one CPU for it (evaluation.pinning)
     result = match(args.first, args.second, field=args.field, minutes=args.minutes, seed=args.seed, rule=args.rule,
-                   progress=show_progress(args))
+                   robot=args.robot, progress=show_progress(args))
     if plot:
         result.save_plot(plot)
     if gif:
@@ -65,6 +70,8 @@ def run(args) -> None:
         goals.append(f"{t:.1f} s {out['players'][side]} ({score[0]}-{score[1]})")
     print("  goals: " + (", ".join(goals) if goals else "none"))
     print(f"  rule {out['rule']}: {RULE_TEXT[out['rule']]}")
+    if out["robots"] != ["khepera", "khepera"]:
+        print(f"  robots: {p0} on {out['robots'][0]}, {p1} on {out['robots'][1]}")
     extra = f"; dead-ball restarts {out['restarts']}" if out.get("restarts") is not None else ""
     print(f"  collisions {out['collisions'][0]}, {out['collisions'][1]}; the ball {out['ball_in_half_s'][0]:.1f} s in "
           f"side 0's half, {out['ball_in_half_s'][1]:.1f} s in side 1's{extra}")

@@ -39,6 +39,6 @@ def run(args) -> None:
             print(f"{path}: ok, robot {r.name} ({describe(r)})")
         return
     width = max(len(r.name) for r in result.items)
-    for r in result.items:
-        print(f"{r.name.ljust(width)}  {describe(r)}")
+    for r, origin in zip(result.items, result.origins()):
+        print(f"{r.name.ljust(width)}  {describe(r)}" + ("" if origin == "built in" else f" ({origin})"))
         print(f"{''.ljust(width)}  {r.about}")

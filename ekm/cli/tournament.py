@@ -13,7 +13,8 @@ def add_parser(sub) -> None:
                 "rank them with 95 % intervals",
                 ["ekm tournament deliberation,deliberation:level=half,deliberation:level=none --seeds 10",
                  "ekm tournament samba,ekm,schema --minutes 5 --seeds 20 --out cup.jsonl --plot cup.png",
-                 "ekm tournament deliberation,samba --rule sahota --scheduler tcp://head:8786 --json"],
+                 "ekm tournament deliberation,samba --rule sahota --scheduler tcp://head:8786 --json",
+                 "ekm tournament deliberation,deliberation --robot khepera --robot worn-wheel --seeds 4"],
                 more="The players and their parameters: ekm players. In a pairing the player given first plays "
                      "side 0 on even seeds and side 1 on odd ones. docs/guide/soccer.md explains the table.")
     p.add_argument("players", metavar="A,B,...",
@@ -40,7 +41,7 @@ def run(args) -> None:
     in_this_process(args)
     result = tournament(args.players, field=args.field, minutes=args.minutes, seeds=args.seeds, seed=args.seed,
                         rule=args.rule, workers=args.workers, scheduler=args.scheduler, out=args.out,
-                        resume=args.resume, progress=show_progress(args))
+                        resume=args.resume, robot=args.robot, progress=show_progress(args))
     if plot:
         result.save_plot(plot)
     if args.json:

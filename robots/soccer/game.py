@@ -49,13 +49,28 @@ def kickoff_poses(field: Field, robot: RobotParams = KHEPERA) -> tuple[np.ndarra
     return np.array([0.25 * field.length, y, 0.0]), np.array([0.75 * field.length, y, np.pi])
 
 
+def robot_list(params, robots: int) -> list[RobotParams]:
+    """``params`` — one robot for all, or one per robot — as a list of ``robots``; refused in one line if their
+    physics sub-steps or control periods differ (the game steps them together)."""
+    each = [params] * robots if isinstance(params, RobotParams) else list(params)
+    if len(each) != robots or not all(isinstance(r, RobotParams) for r in each):
+        raise InputError(f"Game: {robots} robots need one robot or {robots}, got {params!r}")
+    for r in each[1:]:
+        for key in ("dt", "avoid_period"):
+            if getattr(r, key) != getattr(each[0], key):
+                raise InputError(f"Game: robots {each[0].name} and {r.name} must share {key} (the game steps them "
+                                 f"together), got {getattr(each[0], key)} and {getattr(r, key)}")
+    return each
+
+
 class Game:
     """Robots and a ball on a pitch (module docstring).
 
     Parameters
     ----------
     field, ball : the pitch. ``robots`` : int, how many robots (robot i plays side ``i % 2``).
-    seeds : sequence of int, one per robot: its motor and sensor noise. ``params`` : the robots.
+    seeds : sequence of int, one per robot: its motor and sensor noise. ``params`` : the robot, or one per
+    robot (:mod:`robots.robotfile`; they must share the physics sub-step ``dt`` and the control period).
     kickoff : sequence of ``(3,)`` poses, one per robot (default :func:`kickoff_poses` for two robots).
     rule : ``"centre"`` or ``"sahota"`` (:mod:`robots.soccer.referee`).
     stall_s, stall_m : a ball that stays within ``stall_m`` m for ``stall_s`` s is dead: kick-off again.
@@ -73,21 +88,22 @@ class Game:
             raise InputError(f"rule: must be one of {', '.join(RULES)}, got {rule!r}")
         if len(seeds) != robots:
             raise InputError(f"Game: {robots} robots need {robots} seeds, got {len(seeds)}")
-        kickoff = kickoff_poses(field, params) if kickoff is None else kickoff
+        each = robot_list(params, robots)
+        kickoff = kickoff_poses(field, each[0]) if kickoff is None else kickoff
         if len(kickoff) != robots:
             raise InputError(f"Game: {robots} robots need {robots} kick-off poses, got {len(kickoff)}")
-        self.field, self.params, self.rule = field, params, rule
+        self.field, self.params, self.rule = field, each[0], rule
         self.pitch = Pitch(field, ball)
         self.pitch.ball_shape.filter = self.pitch.ball_shape.filter._replace(categories=BALL_CATEGORY)
         self._k = 0
-        self.robots = [RobotBody(self.pitch.space, self._clock, params, seed, index=i,
+        self.robots = [RobotBody(self.pitch.space, self._clock, robot, seed, index=i,
                                  pushes=(BALL_COLLISION_TYPE,), unseen=BALL_CATEGORY)
-                       for i, seed in enumerate(seeds)]
+                       for i, (robot, seed) in enumerate(zip(each, seeds))]
         for r in self.robots:
             self.pitch.space.on_collision(BALL_COLLISION_TYPE, r.collision_type, begin=self._bounce)
         self.kickoff = [finite(p, 3, "kickoff") for p in kickoff]
         for i, (r, pose) in enumerate(zip(self.robots, self.kickoff)):
-            if not field.contains(pose[:2], margin=params.radius):
+            if not field.contains(pose[:2], margin=r.params.radius):
                 raise InputError(f"Game: kick-off pose {i} {pose.tolist()} puts the robot off the pitch or into a wall")
             r.place(pose)
         if not (stall_s > 0 and stall_m > 0):

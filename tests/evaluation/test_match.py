@@ -103,7 +103,8 @@ def test_the_outcome_holds_every_key_and_each_goal_once(fakes):
                         kickoff=[(0.3, 0.4, 0.0), (0.9, 0.15, math.pi)])
     out = record.outcome()
     assert set(out) == {"players", "specs", "seed", "minutes", "rule", "goals", "winner", "goal_times",
-                        "collisions", "ball_in_half_s", "restarts"}
+                        "collisions", "ball_in_half_s", "restarts", "robots", "robot_fingerprints"}
+    assert out["robots"] == ["khepera", "khepera"]  # QUIET is the Khepera without noise, under its name
     assert out["players"] == ["t_constant:left=0.16,right=0.16", "t_constant:left=0,right=0"]  # labels, side 0 first
     assert (out["seed"], out["minutes"], out["rule"], out["winner"]) == (0, 0.5, "centre", 0)
     assert out["restarts"] == 0  # no dead ball: the goals' kick-offs are not restarts

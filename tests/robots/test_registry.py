@@ -126,3 +126,17 @@ def test_a_family_of_one_s_own_makes_worlds_by_their_spelling(registries):
     assert load_world("open-field:3") == w and ekm.generate("open-field", 3) == w
     assert ekm.families().rows[-1] == {"name": "open-field", "summary": "an empty arena", "origin": "added",
                                        "parameters": []}
+
+
+def test_a_robot_of_one_s_own_drives_by_its_name_and_is_checked_as_a_robot_file(registries):
+    heavy = ekm.register_robot("heavy", {"motor_tau": 0.08, "max_wheel_speed": 0.12}, "a slow, heavy Khepera")
+    assert (heavy.motor_tau, heavy.max_wheel_speed, heavy.radius) == (0.08, 0.12, 0.025)  # the rest: the Khepera's
+    assert ekm.robot("heavy") == heavy and heavy.about == "a slow, heavy Khepera"
+    listed = {r["name"]: r["origin"] for r in ekm.robots().to_dict()["robots"]}
+    assert listed["heavy"] == "added" and listed["khepera"] == "built in"
+    with pytest.raises(InputError, match="robot wobbly: wheel_base: must be > 0, got 0"):
+        ekm.register_robot("wobbly", {"wheel_base": 0})
+    with pytest.raises(InputError, match="robot 'worn-wheel': the name of a built-in robot"):
+        ekm.register_robot("worn-wheel", {"wheel_gain": [0.8, 1.0]})
+    carried = pickle.loads(pickle.dumps(added_here()))
+    assert heavy in carried

@@ -18,7 +18,7 @@ from evaluation.match import GameJob
 from robots.soccer.fieldfile import SoccerField, save_field
 
 MATCH_KEYS = {"players", "specs", "seed", "minutes", "rule", "goals", "winner", "goal_times", "collisions",
-              "ball_in_half_s", "field", "ekm_version"}
+              "ball_in_half_s", "field", "robots", "robot_fingerprints", "ekm_version"}
 TOURNAMENT = ["tournament", "schema,ekm", "--seeds", "2", "--minutes", "0.1", "--workers", "1"]
 
 
@@ -170,6 +170,9 @@ def no_games(monkeypatch):
     (["tournament", "schema,ekm", "--workers", "0"], "argument --workers: must be > 0, got 0"),
     (["tournament", "schema,ekm", "--plot", "cup.svg"], "--plot cup.svg: expected a file name ending in .png"),
     (["players", "striker"], "player 'striker': unknown (choose from deliberation, samba, ekm, schema)"),
+    (["match", "schema", "ekm", "--robot", "tank"], "tank: no such robot file or named robot"),
+    (["tournament", "schema,ekm,samba", "--robot", "khepera", "--robot", "e-puck"],
+     "ekm tournament: --robot: give one robot for every player or one per player (3), got 2"),
 ])
 def test_bad_input_is_one_line_and_exit_2_before_any_game(cli, no_games, argv, message):
     code, out, err = cli(*argv)
@@ -231,3 +234,20 @@ def test_compare_from_a_tournaments_results_file_says_so_in_one_line(tmp_path, c
     assert main(["compare", "--from", str(path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert err == [f"error: {path}: a tournament's results file, not a comparison's (ekm compare --out writes those)"]
+
+
+def test_each_player_can_play_on_its_own_robot_and_the_results_say_which(cli, tmp_path):
+    """--robot once per player: the match prints and records each side's robot; in a tournament the same player
+    enters twice, labelled by its robot, and the results file keeps the robots."""
+    code, out, err = cli("match", "schema", "schema", "--minutes", "0.05", "--robot", "khepera", "--robot",
+                         "worn-wheel")
+    assert code == 0 and err == "" and "  robots: schema on khepera, schema on worn-wheel" in out.splitlines()
+    results = tmp_path / "cup.jsonl"
+    code, out, err = cli("tournament", "schema,schema", "--seeds", "1", "--minutes", "0.05", "--workers", "1",
+                         "--robot", "khepera", "--robot", "e-puck", "--json", "--out", results)
+    doc = json.loads(out)
+    assert code == 0 and doc["players"] == ["schema@khepera", "schema@e-puck"]
+    assert [r["robots"] for r in doc["records"]] == [["khepera", "khepera"], ["khepera", "e-puck"],
+                                                     ["e-puck", "e-puck"]]
+    header = json.loads(results.read_text().splitlines()[0])["settings"]
+    assert [r["name"] for r in header["robots"]] == ["khepera", "e-puck"]

@@ -162,3 +162,25 @@ def test_mismatched_seeds_poses_commands_or_a_bad_rule_are_refused(make, match):
 def test_a_bad_seed_is_refused_not_rounded(seed):
     with pytest.raises(ValueError, match="seed"):
         Game(F, BallParams(), 2, (0, seed), QUIET)
+
+
+def test_each_robot_of_a_game_moves_as_its_own_robot():
+    """A Khepera and a worn-wheel Khepera (left wheel 0.9), noise off, both sent 0.096 m/s on each wheel for
+    1.024 s (eight periods of eight 16 ms sub-steps) from rest. The wheels lag (τ = 20 ms, each sub-step's speed
+    c (1 − e^{−j dt/τ}), j = 0..63) and cover c (1.024 − dt / (1 − e^{−dt/τ})) = c · 0.994943 m; so the Khepera goes
+    0.095515 m straight, and the worn-wheel one turns left by (0.096 − 0.0864) / 0.053 · 0.994943 = 0.18022 rad."""
+    worn = dataclasses.replace(QUIET, name="worn", wheel_gain=(0.9, 1.0))
+    game = Game(F, BallParams(), 2, (0, 1), [QUIET, worn])
+    start = [r.pose.copy() for r in game.robots]
+    for _ in range(8):
+        game.step([(0.096, 0.096)] * 2)
+    travelled = 1.024 - 0.016 / (1.0 - math.exp(-0.8))
+    np.testing.assert_allclose(game.robots[0].pose - start[0], [0.096 * travelled, 0.0, 0.0], atol=1e-9)
+    turned = math.remainder(game.robots[1].pose[2] - start[1][2], 2 * math.pi)
+    assert turned == pytest.approx(0.0096 / 0.053 * travelled, rel=1e-6)
+
+
+def test_robots_that_step_differently_cannot_share_a_game():
+    slow = dataclasses.replace(QUIET, name="slow", avoid_period=0.256, target_period=1.024)
+    with pytest.raises(InputError, match="robots khepera and slow must share avoid_period"):
+        Game(F, BallParams(), 2, (0, 1), [QUIET, slow])
