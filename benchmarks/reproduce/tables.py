@@ -7,6 +7,7 @@ table's command (through the Python API, which the command wraps), renders the t
     python benchmarks/reproduce/tables.py compare ch62      # only these
     python benchmarks/reproduce/tables.py --check           # fail (exit 1) where a page differs; write nothing
     python benchmarks/reproduce/tables.py --cache /tmp/t    # keep each command's result, reuse it next time
+    python benchmarks/reproduce/tables.py --check --long    # the check of the LONG tables too (hours)
 
 Every table here is deterministic — a comparison is the same run for run on any number of workers, and
 training is bit for bit the same for the same seed on the same machine — so ``--check`` is how CI knows
@@ -421,6 +422,11 @@ TABLES = {t.name: t for t in (
     Table("adaptation", adaptation_table), Table("adaptation-named", adaptation_named),
     Table("adaptation-suite", adaptation_suite))}
 
+#: Tables whose commands take hours on 2 cores (six robots, each trained from scratch and run through every named
+#: world and the suite): made like the others, left out of a plain ``--check`` (CI's, about 15 min) unless named or
+#: ``--long`` is given.
+LONG = ("adaptation", "adaptation-named", "adaptation-suite")
+
 BLOCK = re.compile(r"(<!-- table: (?P<name>[a-z0-9-]+) -->\n)(?P<body>.*?)(<!-- end table -->)", re.S)
 
 
@@ -438,6 +444,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("names", nargs="*", help=f"tables to make (default all: {', '.join(TABLES)})")
     parser.add_argument("--check", action="store_true", help="write nothing; exit 1 if a page differs")
+    parser.add_argument("--long", action="store_true", help=f"with --check and no names: the long tables too "
+                                                             f"({', '.join(LONG)})")
     parser.add_argument("--cache", metavar="DIR", help="keep each command's result in DIR and reuse it (not with --check)")
     args = parser.parse_args(argv)
     if args.cache and args.check:
@@ -449,7 +457,7 @@ def main(argv=None) -> int:
     unknown = [n for n in args.names if n not in TABLES]
     if unknown:
         parser.error(f"unknown table {unknown[0]!r} (tables: {', '.join(TABLES)})")
-    names = args.names or list(TABLES)
+    names = args.names or [n for n in TABLES if args.long or not args.check or n not in LONG]
     used = {m.group("name") for p in PAGES for m in BLOCK.finditer((ROOT / p).read_text())}
     rendered = {n: "\n".join(TABLES[n].render()) + "\n" for n in names if n in used}
     differ = []

@@ -38,6 +38,7 @@ def test_an_unknown_table_is_refused_in_one_line():
 
 @pytest.mark.slow
 def test_the_pages_say_what_the_commands_give():
-    """Every command of every table, run afresh (about 15 min on 2 cores)."""
+    """Every command of every table but the LONG ones (hours: ``tables.py --check --long``), run afresh (about
+    15 min on 2 cores)."""
     proc = subprocess.run([sys.executable, str(SCRIPT), "--check"], capture_output=True, text=True, cwd=ROOT)
     assert proc.returncode == 0, proc.stdout + proc.stderr[-3000:]
