@@ -55,6 +55,34 @@ def gaps(p, scene: Scene):
     return jnp.concatenate([gap_cap, gap_poly]), jnp.concatenate([n_cap, n_poly])
 
 
+def _cross(u, v):
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+def _segment_gaps(p, q, a, b):
+    """Distance between the segment ``p``–``q`` ``(2,)`` and the segments ``a``–``b`` ``(..., 2)``: 0 where they
+    cross, else the least of the four end points' distances to the other segment."""
+    ends = jnp.minimum(_towards(p, _closest_on_segments(p, a, b))[0], _towards(q, _closest_on_segments(q, a, b))[0])
+    others = jnp.minimum(jnp.linalg.norm(a - _closest_on_segments(a, p, q), axis=-1),
+                         jnp.linalg.norm(b - _closest_on_segments(b, p, q), axis=-1))
+    d = jnp.minimum(ends, others)
+    e, f = q - p, b - a
+    s1, s2 = _cross(e, a - p), _cross(e, b - p)
+    s3, s4 = _cross(f, p - a), _cross(f, q - a)
+    crossing = (s1 * s2 < 0) & (s3 * s4 < 0)
+    return jnp.where(crossing, 0.0, d)
+
+
+def clearance(p, q, scene: Scene):
+    """Least distance from the segment ``p``–``q`` ``(2,)`` to any primitive's surface (0 where it enters one;
+    ``inf`` in an empty scene)."""
+    cap = jnp.where(scene.cap_on, jnp.maximum(_segment_gaps(p, q, scene.cap_a, scene.cap_b) - scene.cap_r, 0.0),
+                    jnp.inf)
+    v0 = scene.poly_v
+    edge = jnp.where(scene.edge_on, _segment_gaps(p, q, v0, jnp.roll(v0, -1, axis=-2)), jnp.inf)
+    return jnp.minimum(jnp.min(cap), jnp.min(edge))
+
+
 def _ray_segment(s, u, a, b):
     """Distance ``t >= 0`` along the ray ``s + t u`` to the segments ``a``–``b`` ``(..., 2)``; ``inf`` if missed."""
     e = b - a
@@ -89,8 +117,9 @@ def ray_hit(s, u, length, scene: Scene):
     ab = b - a
     ln = jnp.sqrt(jnp.maximum(jnp.sum(ab * ab, axis=-1), _TINY))
     normal = jnp.stack([-ab[..., 1], ab[..., 0]], axis=-1) / ln[..., None] * r[..., None]
-    t_cap = jnp.minimum(jnp.minimum(_ray_circle(s, u, a, r), _ray_circle(s, u, b, r)),
-                        jnp.minimum(_ray_segment(s, u, a + normal, b + normal), _ray_segment(s, u, a - normal, b - normal)))
+    ends = jnp.minimum(_ray_circle(s, u, a, r), _ray_circle(s, u, b, r))
+    sides = jnp.minimum(_ray_segment(s, u, a + normal, b + normal), _ray_segment(s, u, a - normal, b - normal))
+    t_cap = jnp.minimum(ends, sides)
     t_cap = jnp.where(inside_cap, 0.0, t_cap)
     t_cap = jnp.where(scene.cap_on, t_cap, jnp.inf)
 
