@@ -37,19 +37,25 @@ def _reset_all(keys, task, config):
     return jax.vmap(jt.reset, in_axes=(0, None, None))(keys, task, config)
 
 
+#: Runs stepped together inside one call: larger batches go through in blocks of this many (``lax.map``), which
+#: keeps a block's arrays in cache (on two CPU cores 4,096 runs as one ``vmap`` made a third as many steps a second).
+BLOCK = 256
+
+
+def _step_one(state, action, done, task, config):
+    """Step one run, or reset it if its episode ended on the last call (next-step autoreset)."""
+    stepped, obs, reward, terminated, truncated = jt.step(state, action, task, config)
+    fresh, fresh_obs = jt.reset(stepped.key, task, config)
+    state = jax.tree.map(lambda a, b: jnp.where(done, a, b), fresh, stepped)
+    return (state, jnp.where(done, fresh_obs, obs), jnp.where(done, 0.0, reward), terminated & ~done,
+            truncated & ~done)
+
+
 @partial(jax.jit, static_argnames="config")
 def _step_all(state, actions, done, task, config):
-    """Step every run; those whose episode ended on the last call reset instead (next-step autoreset)."""
-    stepped, obs, reward, terminated, truncated = jax.vmap(jt.step, in_axes=(0, 0, None, None))(
-        state, actions, task, config)
-    fresh, fresh_obs = jax.vmap(jt.reset, in_axes=(0, None, None))(stepped.key, task, config)
-
-    def pick(a, b):
-        return jnp.where(done.reshape(done.shape + (1,) * (a.ndim - 1)), a, b)
-
-    state = jax.tree.map(pick, fresh, stepped)
-    obs = pick(fresh_obs, obs)
-    return state, obs, jnp.where(done, 0.0, reward), terminated & ~done, truncated & ~done
+    """Every run's :func:`_step_one`, in blocks of :data:`BLOCK`."""
+    one = partial(_step_one, task=task, config=config)
+    return jax.lax.map(lambda x: one(*x), (state, actions, done), batch_size=min(BLOCK, actions.shape[0]))
 
 
 class KheperaVectorEnv(VectorEnv):
