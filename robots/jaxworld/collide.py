@@ -108,18 +108,30 @@ def ray_hit(s, u, length, scene: Scene):
     """Distance along the ray from ``s`` ``(2,)`` in unit direction ``u`` ``(2,)`` to the first primitive within
     ``length`` m; ``inf`` if none. A ray that starts inside a shape reads 0 (as pymunk's segment query does).
 
-    Capsules: the nearer of the two end circles and the two sides (the segment shifted by ±r along its normal).
+    Capsules as Chipmunk's ``cpSegmentShapeSegmentQuery`` sees them: where the ray's segment (``s`` to
+    ``s + length u``) passes between the ends of the capsule's side that faces ``s`` (the segment shifted by ``r``
+    towards ``s``), that side alone is tested; elsewhere the two end circles. (A ray grazing a wall's end along
+    the wall can so miss the end cap, in pymunk and here alike.) A circle (``a = b``) is a circle.
     Convex polygons: Cyrus–Beck clipping, ``t_in = max`` over entering edges of ``n·(v - s) / n·u``, hit when
-    ``t_in <= t_out`` (outward normals ``n`` of the counter-clockwise edges).
+    ``t_in <= t_out`` (outward normals ``n`` of the counter-clockwise edges), the edge crossing Chipmunk finds.
     """
     a, b, r = scene.cap_a, scene.cap_b, scene.cap_r
     inside_cap = jnp.sum((_closest_on_segments(s, a, b) - s) ** 2, axis=-1) <= r * r
     ab = b - a
-    ln = jnp.sqrt(jnp.maximum(jnp.sum(ab * ab, axis=-1), _TINY))
-    normal = jnp.stack([-ab[..., 1], ab[..., 0]], axis=-1) / ln[..., None] * r[..., None]
+    ln2 = jnp.sum(ab * ab, axis=-1)
+    circle = ln2 <= _TINY
+    n = jnp.stack([-ab[..., 1], ab[..., 0]], axis=-1) / jnp.sqrt(jnp.maximum(ln2, _TINY))[..., None]
+    d = jnp.sum((a - s) * n, axis=-1)  # signed distance of the capsule's line from s, along n
+    flipped = jnp.where((d > 0)[..., None], -n, n)
+    near_a, near_b = a + flipped * r[..., None] - s, b + flipped * r[..., None] - s
+    delta = u * length
+    strip = _cross(delta, near_a) * _cross(delta, near_b) <= 0
+    d_off = d + jnp.where(d > 0, -r, r)
+    ad, bd = -d_off, jnp.sum(delta * n, axis=-1) - d_off
+    crosses = ad * bd < 0
+    t_side = jnp.where(crosses, ad / jnp.where(crosses, ad - bd, 1.0) * length, jnp.inf)
     ends = jnp.minimum(_ray_circle(s, u, a, r), _ray_circle(s, u, b, r))
-    sides = jnp.minimum(_ray_segment(s, u, a + normal, b + normal), _ray_segment(s, u, a - normal, b - normal))
-    t_cap = jnp.minimum(ends, sides)
+    t_cap = jnp.where(circle, _ray_circle(s, u, a, r), jnp.where(strip, t_side, jnp.where(r > 0, ends, jnp.inf)))
     t_cap = jnp.where(inside_cap, 0.0, t_cap)
     t_cap = jnp.where(scene.cap_on, t_cap, jnp.inf)
 

@@ -90,8 +90,12 @@ def make_task(world, config: TaskConfig = TaskConfig(), checkpoints: str = "visi
     number), the scene to ``shape`` (``(C, P, V)``, :func:`robots.jaxworld.scene.scene_of`)."""
     from dataclasses import replace as dc_replace
 
+    from ekm.errors import InputError
     from planner import plan
 
+    if world.moving_goal:
+        raise InputError(f"engine jax: world {world.name!r} has a moving goal, which the JAX task does not follow; "
+                         f"use the pymunk environment")
     route = plan(world, t=0.0, checkpoints=checkpoints, padding=config.params.radius).checkpoints
     route = np.asarray(route, np.float32)
     slots = len(route) if slots is None else slots

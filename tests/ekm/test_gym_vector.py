@@ -106,3 +106,5 @@ def test_bad_input_is_refused_in_one_line():
         KheperaVectorEnv(1, sensors="mid")
     with pytest.raises(InputError, match=r"^engine jax: world 'three-rooms-moving' has moving obstacles"):
         KheperaVectorEnv(1, world="three-rooms-moving")
+    with pytest.raises(InputError, match=r"^engine jax: world 'moving-target' has a moving goal"):
+        KheperaVectorEnv(1, world="moving-target")
