@@ -38,8 +38,8 @@ def _reset_all(keys, task, config):
 
 
 #: Runs stepped together inside one call: larger batches go through in blocks of this many (``lax.map`` of a
-#: ``vmap``), which keeps a block's arrays in cache. On two loaded CPU cores, 4,096 environments made about 9,500
-#: steps/s as one ``vmap``, 17,800 in blocks of 256 and 29,600 in blocks of 32 (docs/performance.md).
+#: ``vmap``), which keeps a block's arrays in cache: on CPU, one ``vmap`` of thousands of runs is several times
+#: slower a run (docs/performance.md has the measurements).
 BLOCK = 32
 
 
