@@ -211,3 +211,19 @@ def test_the_engines_trace_the_same_path_through_a_named_world(name):
     ra, rb = (np.array(r) for r in zip(*ranges))
     assert np.array_equal(np.isinf(ra), np.isinf(rb))
     assert np.max(np.abs(ra[np.isfinite(ra)] - rb[np.isfinite(rb)])) < 1e-4
+
+
+def test_a_segment_s_clearance_is_its_least_distance_to_the_shapes():
+    # In a 1 m x 0.5 m arena (walls 1 cm thick): the vertical line x = 0.1 from y = 0.1 to 0.4 passes a circle of
+    # 5 cm at (0.2, 0.25) at 0.1 - 0.05 = 0.05 m and the border at x = 0 at 0.1 - 0.005 = 0.095; a line that enters
+    # the circle reads 0.
+    from robots.jaxworld.collide import clearance
+
+    scene = jax.tree.map(jnp.asarray, scene_of(world(obstacles=[{"type": "circle", "center": [0.2, 0.25],
+                                                                  "radius": 0.05}])))
+    assert float(clearance(jnp.array([0.1, 0.1]), jnp.array([0.1, 0.4]), scene)) == pytest.approx(0.05, abs=1e-6)
+    assert float(clearance(jnp.array([0.1, 0.1]), jnp.array([0.1, 0.12]), scene)) == pytest.approx(0.095, abs=1e-6)
+    assert float(clearance(jnp.array([0.1, 0.25]), jnp.array([0.3, 0.25]), scene)) == 0.0
+    # crossing a wall from (0.3, 0.2) to (0.7, 0.2) in the middle, every end point 0.1 m or more from the other
+    walled = jax.tree.map(jnp.asarray, scene_of(world(walls=[[0.3, 0.2, 0.7, 0.2]])))
+    assert float(clearance(jnp.array([0.5, 0.1]), jnp.array([0.5, 0.4]), walled)) == 0.0
