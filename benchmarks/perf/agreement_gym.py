@@ -103,8 +103,9 @@ def main() -> None:
             lo, hi = wilson(k, len(out))
             times = [t for r, _, t in out if r]
             mean_t = f"{np.mean(times):.1f}" if times else "–"
-            print(f"| {world} | {name} | {k}/{len(out)} | {lo:.2f}–{hi:.2f} | {np.mean([c for _, c, _ in out]):.1f} | "
-                  f"{mean_t} | {wall:.1f} |", flush=True)
+            collisions = np.mean([c for _, c, _ in out])
+            print(f"| {world} | {name} | {k}/{len(out)} | {lo:.2f}–{hi:.2f} | {collisions:.1f} | {mean_t} | {wall:.1f} |",
+                  flush=True)
 
 
 if __name__ == "__main__":
