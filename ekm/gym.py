@@ -159,7 +159,7 @@ class KheperaEnv(gymnasium.Env):
 
 def _register() -> None:
     if ENV_ID not in gymnasium.envs.registry:
-        gymnasium.register(id=ENV_ID, entry_point="ekm.gym:KheperaEnv")
+        gymnasium.register(id=ENV_ID, entry_point="ekm.gym:KheperaEnv", vector_entry_point="ekm.gym_vector:make")
 
 
 _register()

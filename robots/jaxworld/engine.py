@@ -1,0 +1,141 @@
+"""One robot in one world, in JAX: the pymunk world's control period as a pure function (docs/jaxworld.md).
+
+:func:`step` is :meth:`robots.world.PymunkWorld.step` without pymunk. The motors are the kinematics' own
+(:func:`robots.kinematics.quantize_command`, :func:`~robots.kinematics.motor_twist`: lag, slip noise ξ drawn by
+the caller up front); the ``n`` sub-steps of ``dt`` then run in a ``lax.scan`` that does what pymunk's velocity
+control and Chipmunk's solver do to the robot's disc:
+
+1. contacts are the primitives the disc (radius ``R``) overlaps, ``gap_i < R`` (:func:`~robots.jaxworld.collide.gaps`);
+2. the commanded velocity ``v (cos θ, sin θ)`` loses its part ``(v·n_i) n_i`` pushing into a contact, the two
+   deepest contacts in turn (:meth:`robots.body.RobotBody.slide`): the robot slides along walls;
+3. Euler step: ``p ← p + v dt + β Σ_i max(0, R - gap_i - slop) (-n_i)``, ``θ ← θ + ω dt``: Chipmunk's position
+   bias pushes an overlap out by ``β = 1 - collision_bias^dt`` (pymunk's default bias ``0.9^60``: β ≈ 0.096 a
+   16 ms sub-step) of its depth beyond the ``slop`` (:data:`robots.body.SLOP`, 0.1 mm) each sub-step;
+4. a contact **episode** begins on a sub-step that ends touching after one that did not, when the last sub-step
+   that ended touching is at least :data:`robots.body.REJOIN_S` before it; ``contact_s`` sums the sub-steps that
+   end touching (:class:`robots.world.PymunkWorld`).
+
+A sub-step moves the centre at most ``1.1 c* dt`` ≈ 2.8 mm, far less than the robot's radius: the disc cannot pass
+through a wall of any thickness between two sub-steps (no tunnelling), as in pymunk.
+
+Everything is a pure function of arrays and static :class:`~robots.params.RobotParams`; ``jit`` with ``params``
+and ``n`` static, ``vmap`` over runs (and scenes).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+
+from ekm.angles import wrap
+from robots import kinematics
+from robots.body import REJOIN_S, SLOP
+from robots.jaxworld.collide import gaps, ray_hit
+from robots.jaxworld.scene import Scene
+from robots.kinematics import RobotState
+from robots.params import KHEPERA, RobotParams, SensorSet
+from robots.sensors import ir_readings, sensor_rays
+
+#: pymunk's default ``Space.collision_bias``: the fraction of an overlap left after one second of correction.
+COLLISION_BIAS = (1.0 - 0.1) ** 60
+
+
+def bias_rate(dt: float) -> float:
+    """β: the fraction of an overlap (beyond the slop) Chipmunk corrects in one sub-step of ``dt`` s."""
+    return 1.0 - COLLISION_BIAS ** dt
+
+
+class EngineState(NamedTuple):
+    """One run's state, a pytree (leading batch axes under ``vmap``).
+
+    ``robot``: pose ``(3,)`` (θ wrapped to (-π, π]) and wheel speeds ``(2,)``; ``k``: sub-steps taken (t = k dt);
+    ``touching``: whether the last sub-step ended in contact; ``last_contact``: time (s) of the last sub-step
+    that ended in contact (``-inf`` before any); ``collisions``: contact episodes; ``contact_s``: s in contact.
+    """
+
+    robot: RobotState
+    k: object
+    touching: object
+    last_contact: object
+    collisions: object
+    contact_s: object
+
+
+def reset(pose, scene: Scene, params: RobotParams = KHEPERA) -> EngineState:
+    """A robot at rest at ``pose`` ``(3,)`` at t = 0; ``touching`` if it starts overlapping a shape."""
+    pose = jnp.asarray(pose, jnp.float32)
+    gap, _ = gaps(pose[:2], scene)
+    return EngineState(robot=RobotState(pose=pose, wheels=jnp.zeros(2, jnp.float32)), k=jnp.int32(0),
+                       touching=jnp.any(gap < params.radius), last_contact=jnp.float32(-jnp.inf),
+                       collisions=jnp.int32(0), contact_s=jnp.float32(0.0))
+
+
+def _slide(vel, overlap, normal):
+    """``vel`` ``(2,)`` less its push into the two deepest contacts (``overlap > 0``), deepest first."""
+    depth, order = jax.lax.top_k(overlap, 2)
+    for j in range(2):
+        n = normal[order[j]]
+        push = vel @ n
+        vel = jnp.where((depth[j] > 0) & (push > 0), vel - push * n, vel)
+    return vel
+
+
+def step(state: EngineState, scene: Scene, command, noise, params: RobotParams = KHEPERA, n: int = 8):
+    """Drive with wheel ``command`` ``(2,)`` m/s for one control period of ``n`` sub-steps.
+
+    ``noise`` ``(K, 2)``: slip draws ξ in [-1, 1] (``params.noise_shape(n dt)``; zeros for a noise-free period).
+    Returns ``(state, trace)``, ``trace`` ``(n, 3)`` the pose after every sub-step, as
+    :meth:`robots.world.PymunkWorld.step` does.
+    """
+    dt, radius = params.dt, params.radius
+    beta = bias_rate(dt)
+    setpoint = kinematics.quantize_command(jnp.asarray(command, jnp.float32), params, jnp)
+    v, omega, wheels = kinematics.motor_twist(state.robot.wheels, setpoint, jnp.asarray(noise, jnp.float32), n,
+                                              params, jnp)
+    gap0, normal0 = gaps(state.robot.pose[:2], scene)
+
+    def substep(carry, vw):
+        pos, theta, k, touching, last, collisions, contact_s, gap, normal = carry
+        vj, wj = vw
+        overlap = radius - gap
+        vel = _slide(vj * jnp.stack([jnp.cos(theta), jnp.sin(theta)]), overlap, normal)
+        push_out = beta * jnp.maximum(overlap - SLOP, 0.0)
+        pos = pos + vel * dt - jnp.sum(push_out[:, None] * normal, axis=0)
+        theta = theta + wj * dt
+        gap, normal = gaps(pos, scene)
+        now = jnp.any(gap < radius)
+        t = k.astype(jnp.float32) * dt
+        collisions = collisions + (now & ~touching & (t - last >= REJOIN_S - 1e-6)).astype(jnp.int32)
+        contact_s = contact_s + jnp.where(now, jnp.float32(dt), 0.0)
+        last = jnp.where(now, (k + 1).astype(jnp.float32) * dt, last)
+        carry = (pos, theta, k + 1, now, last, collisions, contact_s, gap, normal)
+        return carry, jnp.concatenate([pos, wrap(theta)[None]])
+
+    s = state
+    carry = (s.robot.pose[:2], s.robot.pose[2], s.k, s.touching, s.last_contact, s.collisions, s.contact_s,
+             gap0, normal0)
+    carry, trace = jax.lax.scan(substep, carry, (v, omega))
+    pos, theta, k, touching, last, collisions, contact_s, _, _ = carry
+    robot = RobotState(pose=jnp.concatenate([pos, wrap(theta)[None]]), wheels=wheels)
+    return EngineState(robot, k, touching, last, collisions, contact_s), trace
+
+
+def ranges(pose, scene: Scene, sensors: SensorSet, radius: float = KHEPERA.radius):
+    """True distances ``(m,)`` from the body surface along each sensor ray to the first shape, ``inf`` beyond
+    ``sensors.range_m`` (:meth:`robots.body.RobotBody.ranges`)."""
+    start, end = sensor_rays(pose, sensors, radius, xp=jnp)
+    direction = (end - start) / sensors.range_m
+    return jax.vmap(ray_hit, in_axes=(0, 0, None, None))(start, direction, sensors.range_m, scene)
+
+
+def sense(state: EngineState, scene: Scene, sensors: SensorSet, noise, params: RobotParams = KHEPERA):
+    """IR readings ``(m,)`` for standard-normal ``noise`` ``(m,)`` (0: noise-free, still quantised):
+    :func:`robots.sensors.ir_readings` of :func:`ranges`."""
+    return ir_readings(ranges(state.robot.pose, scene, sensors, params.radius), noise, sensors, xp=jnp)
+
+
+def time_of(state: EngineState, params: RobotParams = KHEPERA):
+    """Simulated time (s) of ``state``."""
+    return state.k.astype(jnp.float32) * params.dt
