@@ -191,16 +191,19 @@ def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
 def _row(rs: list[dict]) -> dict:
     """The summary of runs ``rs``: ``trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions,
     trapped, contact_s, failed`` — the means over the runs that reached the goal (None if none did) — and
-    ``motion`` (:func:`motion_summary`)."""
-    ok = [r for r in rs if r["reached"]]
-    lo, hi = wilson(len(ok), len(rs))
-    return {"trials": len(rs), "success_rate": round(len(ok) / len(rs), 4) if rs else None,
-            "success_ci95": [round(lo, 4), round(hi, 4)],
+    ``motion`` (:func:`motion_summary`). The success rate and its interval are over the runs that were made: a
+    run that failed (``failed``: it could not be made) did not drive, so it is no run that missed the goal; with
+    every run failed both are None (``ekm compare`` prints *failed*)."""
+    made = [r for r in rs if "failed" not in r]
+    ok = [r for r in made if r["reached"]]
+    ci = [round(x, 4) for x in wilson(len(ok), len(made))] if made else None
+    return {"trials": len(rs), "success_rate": round(len(ok) / len(made), 4) if made else None,
+            "success_ci95": ci,
             "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
             "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
             "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
-            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": sum("failed" in r for r in rs),
-            "motion": motion_summary(rs)}
+            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": len(rs) - len(made),
+            "motion": motion_summary(made)}
 
 
 def motion_summary(rs: list[dict]) -> dict:
@@ -258,12 +261,14 @@ def by_architecture(records: list[dict], labels) -> list[dict]:
 
 
 def run_letter(r: dict) -> str:
-    """R reached, T trapped, C arrived after a collision, N no route (at the start, or after a change of the
-    map), L time limit."""
+    """R reached, T trapped, C arrived after a collision, N no route (after a change of the map), L time limit,
+    F failed (the run could not be made: no route at the start, an error, its worker kept dying)."""
+    if "failed" in r:
+        return "F"
     if r["reached"]:
         return "R"
     if r["trapped"]:
         return "T"
     if r["arrived"]:
         return "C"
-    return "N" if "failed" in r or "route" in r["ended"] else "L"
+    return "N" if "route" in r["ended"] else "L"

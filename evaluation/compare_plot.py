@@ -60,9 +60,14 @@ def _success_bars(bars, labels, n_groups: int, row) -> None:
     for j, label in enumerate(labels):
         rows = [row(j, i) for i in range(n_groups)]
         ys = [r["success_rate"] or 0.0 for r in rows]
-        err = [[y - r["success_ci95"][0] for y, r in zip(ys, rows)], [r["success_ci95"][1] - y for y, r in zip(ys, rows)]]
-        bars.bar([i - 0.4 + width * (j + 0.5) for i in range(n_groups)], ys, width * 0.9,
-                 color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2, error_kw={"linewidth": 0.8})
+        ci = [r["success_ci95"] or (0.0, 0.0) for r in rows]  # None: every run failed, no bar
+        err = [[y - c[0] for y, c in zip(ys, ci)], [c[1] - y for y, c in zip(ys, ci)]]
+        xs = [i - 0.4 + width * (j + 0.5) for i in range(n_groups)]
+        bars.bar(xs, ys, width * 0.9, color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2,
+                 error_kw={"linewidth": 0.8})
+        for x, r in zip(xs, rows):
+            if r["success_rate"] is None:
+                bars.text(x, 0.02, "failed", rotation=90, ha="center", va="bottom", fontsize=7, color="#b2182b")
     bars.set(ylim=(0, 1.05), ylabel="success rate")
     bars.legend(fontsize=7, ncols=min(len(labels), 4), loc="upper center", bbox_to_anchor=(0.5, -0.28), frameon=False)
     bars.grid(axis="y", alpha=0.3)

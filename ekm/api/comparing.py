@@ -17,7 +17,8 @@ _PROG = "ekm compare"
 class Table(Result):
     """A comparison: ``rows``, one per architecture and world (architectures in the order given, worlds
     within each), each a dict with ``world``, ``architecture``, ``trials``, ``success_rate`` and its 95 %
-    Wilson interval ``success_ci95``, ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
+    Wilson interval ``success_ci95`` over the runs that were made (both None when every run ``failed``),
+    ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
     ``trapped`` and ``runs_by_trial`` (a letter per trial); ``seconds`` the wall time and ``workers`` where
     the runs went. ``families``: with generated worlds, one row per family and architecture (and
     ``"all"``), each with the number of ``worlds`` and the same summary over their runs. ``overall``: one row
@@ -152,7 +153,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     workers : int, optional
         Local worker processes (default: the machine's cores; 1 runs in this process). Worker processes
         are spawned, so a script that calls :func:`compare` with several needs the usual
-        ``if __name__ == "__main__":`` guard (a notebook does not).
+        ``if __name__ == "__main__":`` guard (a notebook does not); without it every worker dies as it
+        starts and :class:`ekm.InputError` names the script and the guard.
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:8786``; needs ``ekm[cluster]``) to send the runs to.
     out : path, optional
@@ -179,6 +181,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
 
     Raises
     ------
+    ekm.InputError
+        Bad arguments; or every local worker died as it started (a script without the ``__main__`` guard).
     ekm.Interrupted
         On Ctrl-C or SIGTERM in the console script: the workers are stopped and the message says how many
         runs the results file keeps and how to resume.

@@ -109,9 +109,13 @@ def print_families(rows) -> None:
 
 
 def _success(r) -> tuple[str, str]:
-    """``("k/n", "lo-hi")`` of a summary row: runs that reached the goal and the 95 % interval."""
+    """``("k/n", "lo-hi")`` of a summary row: runs that reached the goal of the ``n`` that were made, and the 95 %
+    interval; ``("failed", "")`` when no run could be made (the reasons: ``--json``)."""
+    if r["success_rate"] is None:
+        return "failed", ""
     lo, hi = r["success_ci95"]
-    return f"{round(r['success_rate'] * r['trials'])}/{r['trials']}", f"{lo:.2f}-{hi:.2f}"
+    made = r["trials"] - r["failed"]
+    return f"{round(r['success_rate'] * made)}/{made}", f"{lo:.2f}-{hi:.2f}"
 
 
 def _mean(value, digits: int) -> str:
