@@ -49,13 +49,19 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """Run ``ekm ARGV…``; returns the exit status: 0, 2 for bad input, 130 (143 for SIGTERM) when stopped."""
+    """Run ``ekm ARGV…``; returns the exit status: 0, 2 for bad input, 130 (143 for SIGTERM) when stopped.
+
+    Signals held since the console script started (:mod:`ekm.interrupts`) are released once the arguments are
+    read — by the batch runner instead, once its results file exists, for a command whose parser says so
+    (``holds_signals(args)``: ``ekm compare`` and ``ekm tournament`` with ``--out`` or ``--resume``)."""
     from ekm import interrupts
 
     command = "ekm"
     try:
         args = build_parser().parse_args(argv)
         command = f"ekm {args.command}"
+        if not getattr(args, "holds_signals", lambda _: False)(args):
+            interrupts.release()  # a signal so far raises now; a batch with a results file releases them itself
         args.func(args)
         interrupts.check()  # a signal lost inside a C callback still stops the command
     except InputError as exc:

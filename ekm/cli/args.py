@@ -116,6 +116,8 @@ def add_batch_options(p, unit: str, resume: str) -> None:
     p.add_argument("--out", metavar="RESULTS.jsonl",
                    help=f"append every finished {unit} to this results file as it arrives (JSON Lines; must not exist)")
     p.add_argument("--resume", metavar="RESULTS.jsonl", help=resume)
+    # a signal before the results file exists waits for it, so that the line names it (ekm.interrupts)
+    p.set_defaults(holds_signals=lambda args: bool(args.out or args.resume))
 
 
 def in_this_process(args) -> None:
