@@ -26,8 +26,11 @@ def sign_problem(value, strict: bool, shown: str | None = None) -> str | None:
 
 
 def invalid_choice(value, choices) -> str:
-    """argparse's wording for a value not among ``choices``."""
-    return f"invalid choice: {value!r} (choose from {', '.join(map(repr, choices))})"
+    """argparse's wording for a value not among ``choices``, with the closest of them
+    (:func:`robots.spelling.did_you_mean`)."""
+    from robots.spelling import did_you_mean
+
+    return f"invalid choice: {value!r}{did_you_mean(value, choices)} (choose from {', '.join(map(repr, choices))})"
 
 
 def _fail(prog: str, option: str, problem: str):

@@ -104,7 +104,10 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
     for item in items:
         family, sep, count = item.partition(":")
         if family not in FAMILIES:
-            raise InputError(f"--suite {item!r}: unknown family {family!r} (families: {', '.join(FAMILIES)})")
+            from robots.spelling import did_you_mean
+
+            raise InputError(f"--suite {item!r}: unknown family {family!r}{did_you_mean(family, FAMILIES)} "
+                             f"(families: {', '.join(FAMILIES)})")
         try:
             n = int(count) if sep else -1
         except ValueError:
@@ -254,13 +257,13 @@ def load_comparison(path) -> Table:
     Raises :class:`ekm.InputError` if the file is not a results file or does not hold every run (then
     ``ekm compare … --resume PATH`` finishes it)."""
     from evaluation.compare import by_architecture, by_family, summarize
-    from evaluation.results import key, read
+    from evaluation.results import key, kind, read, whose
     from evaluation.scenario import ScenarioConfig
 
     settings, records = read(path)
-    if not all(k in settings for k in ("worlds", "labels", "trials", "seed", "config")):
-        what = "a tournament's" if "tournament" in settings else "another command's"
-        raise InputError(f"{path}: {what} results file, not a comparison's (ekm compare --out writes those)")
+    if kind(settings) != "comparison":
+        raise InputError(f"{path}: {whose(kind(settings))} results file, not a comparison's (ekm compare --out "
+                         f"writes those)")
     names, labels, trials = settings["worlds"], settings["labels"], settings["trials"]
     have = {key(r["given"], r["label"], r["trial"]): r for r in records}
     want = [key(w, a, i) for w in names for i in range(trials) for a in labels]

@@ -110,7 +110,7 @@ def run(args) -> None:
         print_json(outcome.to_dict())
         return
     out = outcome.to_dict()
-    status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
+    status = outcome_status(out)
     drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
     print(f"{rec.world.name}: {spec} on {out['robot']} (seed {args.seed}{drives})")
     if out["map_robot"] is not None and out["map_robot"] != out["robot"]:
@@ -125,3 +125,14 @@ def run(args) -> None:
     for path in (plot, gif, save_map):
         if path:
             print(f"  written to {path}")
+
+
+def outcome_status(out: dict) -> str:
+    """How a run ended, in the words of docs/design.md §5: it *reaches* the goal when it stops there without a
+    collision; one that stopped there after a collision *arrived*, which is not reaching it."""
+    if out["reached"]:
+        return "REACHED the goal"
+    if out["arrived"]:
+        n = out["collisions"]
+        return f"ARRIVED after {n} collision{'' if n == 1 else 's'}, so did not reach the goal"
+    return "TRAPPED" if out["trapped"] else "did not reach the goal"
