@@ -73,7 +73,8 @@ def failed_record(job: Job, reason: str, world: str | None = None, family: str |
 def run_job(job: Job) -> dict:
     """Run one job (in whichever process the executor chose): its outcome record, plus ``label``, ``trial``,
     the ``given`` world spelling, the world's ``family`` (generated worlds; None otherwise) and, with
-    ``keep_path``, ``path`` (the centre every 0.128 s, as lists).
+    ``keep_path``, ``path`` (the centre every 0.128 s, as lists) and ``collided_at`` (the centre where each
+    collision began).
 
     A run that cannot be made is a record too, never the end of a comparison: a world the planner finds no
     route through at any cell, or any exception the run raises, gives :func:`failed_record` with the reason
@@ -112,6 +113,7 @@ def run_job(job: Job) -> dict:
     if job.keep_path:
         every = max(1, round(rec.period / (rec.times[1] - rec.times[0]))) if len(rec.times) > 1 else 1
         out["path"] = rec.poses[::every, :2].round(5).tolist()
+        out["collided_at"] = [[round(float(x), 5), round(float(y), 5)] for _, x, y in rec.collision_log]
     return out
 
 

@@ -68,11 +68,11 @@ class Table(Result):
         return comparison_figure(list(self.rows), list(self.records), list(self.worlds), list(self.labels))
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
-        from ekm.api.checks import output_path
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from robots.plot import save_figure
 
-        out = output_path(path, "--plot", ".png")
+        out = plot_path(path, "--plot")
         save_figure(self.plot(), out, dpi=110)
         return out
 
