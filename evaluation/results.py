@@ -66,9 +66,10 @@ def _read(path: Path) -> tuple[dict, list[dict], int]:
 
 
 #: What the tables read of each record, by the kind of file (:func:`kind`), as ``{key: type}``: "string",
-#: "integer", "number", "boolean", a type ending in "?" may be null; ``failed`` (the reason) may be absent.
+#: "integer", "number", "boolean", a type ending in "?" may be null; ``failed`` (the reason), a generated world's
+#: ``family`` and the motion measures (:data:`evaluation.motion.KEYS`) may be absent.
 RECORD_KEYS = {
-    "comparison": {"given": "string", "label": "string", "trial": "integer", "reached": "boolean",
+    "comparison": {"given": "string", "world": "string", "label": "string", "trial": "integer", "reached": "boolean",
                    "trapped": "boolean", "arrived": "boolean", "ended": "string", "collisions": "integer",
                    "contact_s": "number", "time_s": "number?", "path_m": "number?"},
     "tournament": {"pair": "pair", "seed": "integer", "players": "list", "goals": "pair?", "winner": "integer?"},
@@ -84,11 +85,15 @@ def check_record(record, what: str, where: str) -> None:
     ck = Checker(where)
     if not isinstance(record, dict):
         ck.fail("outcome", f"must be an object, got {type(record).__name__}")
-    keys = dict(RECORD_KEYS.get(what, {}), failed="string?")
-    for name, type_ in keys.items():
+    optional = {"failed": "string?"}
+    if what == "comparison":
+        from evaluation.motion import KEYS
+
+        optional.update({"family": "string?"}, **{k: "number?" for k in KEYS})
+    for name, type_ in {**RECORD_KEYS.get(what, {}), **optional}.items():
         key = f"outcome.{name}"
         if name not in record:
-            if name != "failed":
+            if name not in optional:
                 ck.fail(key, "missing")
             continue
         value = record[name]
@@ -104,6 +109,10 @@ def check_record(record, what: str, where: str) -> None:
             ck.number(value, key, nonneg=True)
         else:
             getattr(ck, type_)(value, key)
+    if what == "comparison" and record["reached"]:
+        for name in ("time_s", "path_m"):  # the means of the runs that reached the goal
+            if record[name] is None:
+                ck.fail(f"outcome.{name}", "must be a number for a run that reached the goal, got null")
 
 
 def kind(settings: dict) -> str:

@@ -14,7 +14,7 @@ SETTINGS = {"worlds": ["open-arena", "maze:1000"], "labels": ["fusion", "fields"
 
 
 def record(world, label, trial):
-    return {"given": world, "label": label, "trial": trial, "reached": trial == 0, "trapped": False,
+    return {"given": world, "world": world, "label": label, "trial": trial, "reached": trial == 0, "trapped": False,
             "arrived": trial == 0, "ended": "stopped at the goal" if trial == 0 else "time limit", "collisions": 0,
             "contact_s": 0.0, "time_s": 30.5 if trial == 0 else None, "path_m": 1.25 if trial == 0 else None}
 
