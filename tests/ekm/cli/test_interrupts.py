@@ -29,18 +29,38 @@ COMMANDS = {
 }
 
 
+def catches_signals(pid: int) -> bool:
+    """Whether process ``pid`` has the package's handlers yet (Linux's /proc; elsewhere, True at once): it catches
+    SIGTERM, which the interpreter leaves alone (its own SIGINT handler is there before ``site`` is imported)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return True
+    caught = next((line.split()[1] for line in status.splitlines() if line.startswith("SigCgt:")), None)
+    return caught is None or bool(int(caught, 16) & (1 << (signal.SIGTERM - 1)))
+
+
 def stopped(cases, tmp_path, sig=signal.SIGINT, group=False):
     """Start every ``(name, argv, moment)`` of ``cases``; send ``sig`` to each at its moment (to its whole
-    process group with ``group``, as a terminal's Ctrl-C does); ``{(name, moment): (status, stderr, dir)}``."""
+    process group with ``group``, as a terminal's Ctrl-C does); ``{(name, moment): (status, stderr, dir)}``.
+
+    A moment counts from when the command handles signals — its first statement (:func:`ekm.__main__.console`)
+    — not from the process's start: before it, the interpreter is still starting (its ``site`` imports), which on
+    a loaded machine takes more than the first moment, and a signal there is Python's own, not the package's."""
     env = {**os.environ, "MPLBACKEND": "Agg"}
     running = []
-    t0 = time.monotonic()
     for name, argv, moment in cases:
         d = tmp_path / f"{name}-{moment}"
         d.mkdir()
         p = subprocess.Popen(EKM + argv, cwd=d, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                              text=True, start_new_session=group)
-        running.append((name, moment, d, p, t0 + moment))
+        running.append([name, moment, d, p, None])
+    while any(r[4] is None for r in running):  # each one's clock starts when it handles signals
+        for r in running:
+            if r[4] is None and catches_signals(r[3].pid):
+                r[4] = time.monotonic() + r[1]
+            assert r[3].poll() is None, "the command ended before it handled signals"
+        time.sleep(0.01)
     for _, _, _, p, at in sorted(running, key=lambda r: r[4]):
         time.sleep(max(0.0, at - time.monotonic()))
         assert p.poll() is None, "the command ended before its signal: make it longer"
