@@ -79,7 +79,8 @@ def test_plot_is_a_png_written_atomically(capsys, tmp_path):
     (["--world", "no-such-world"], "no-such-world: no such world file or named world"),
     (["--world", "three-rooms", "--method", "voronoi"], "argument --method: invalid choice"),
     (["--world", "three-rooms", "--at", "-1"], "argument --at: must be >= 0, got -1"),
-    (["--world", "three-rooms", "--plot", "/no/such/dir/plan.png"], "--plot /no/such/dir/plan.png: no such directory /no/such/dir (make it first)"),
+    (["--world", "three-rooms", "--plot", "/no/such/dir/plan.png"],
+     "--plot /no/such/dir/plan.png: no such directory /no/such/dir (make it first)"),
     ([], "the following arguments are required: --world"),
 ])
 def test_bad_input_is_one_line_and_exit_status_2(capsys, argv, message):
