@@ -14,7 +14,7 @@ def console() -> None:
     A stopped command leaves without the interpreter's shutdown: every file it writes is complete or gone by
     then (the ``finally`` blocks have run), and tearing down JAX's threads mid-computation at shutdown can
     crash the process (a segmentation fault after the one line)."""
-    interrupts.install()
+    interrupts.install(hold=True)  # released once the command has read its arguments (ekm.cli.main)
     import os
     import sys
 

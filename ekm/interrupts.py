@@ -11,6 +11,11 @@ call :func:`check`, which raises once a signal has been received: a signal is ne
 
 Only the console script installs the handler (:func:`ekm.cli.console`); in a program that imports
 ``ekm``, :func:`check` never raises and Python's own handling of Ctrl-C is left alone.
+
+The handler starts *held*: a signal is recorded and nothing is raised until the command has read its arguments
+and :func:`release` is called — at once for most commands (:func:`ekm.cli.main`), and for a batch that keeps a
+results file (``ekm compare --out``) once that file exists (:func:`evaluation.batch.run_batch`), so that its one
+line names the file and how to resume whatever the moment of the signal.
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ import threading
 STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 _received: int | None = None
+_held = False
 
 
 #: Code a KeyboardInterrupt must not be raised in: an import (a C extension's initialisation aborts the
@@ -45,6 +51,8 @@ def _handler(signum, frame) -> None:
     global _received
     if _received is None:
         _received = signum
+    if _held:  # release() raises it
+        return
     if _unsafe(frame):
         again = threading.Timer(AGAIN_S, os.kill, (os.getpid(), signum))
         again.daemon = True
@@ -53,10 +61,12 @@ def _handler(signum, frame) -> None:
     raise KeyboardInterrupt
 
 
-def install() -> None:
-    """Handle SIGINT and SIGTERM in this (main) thread: record the signal and raise KeyboardInterrupt. A
-    KeyboardInterrupt that C code cannot raise (it reports it as "Exception ignored in …") is not printed:
-    :func:`check` raises it again."""
+def install(hold: bool = False) -> None:
+    """Handle SIGINT and SIGTERM in this (main) thread: record the signal and raise KeyboardInterrupt — with
+    ``hold``, only record it until :func:`release`. A KeyboardInterrupt that C code cannot raise (it reports it
+    as "Exception ignored in …") is not printed: :func:`check` raises it again."""
+    global _held
+    _held = hold
     for signum in STATUS:
         signal.signal(signum, _handler)
     default = sys.unraisablehook
@@ -73,6 +83,14 @@ def check() -> None:
     """Raise KeyboardInterrupt if a signal has been received (one that was raised and lost, or none)."""
     if _received is not None:
         raise KeyboardInterrupt
+
+
+def release() -> None:
+    """Stop holding signals (:func:`install`'s ``hold``): from now on they raise, and one received while held
+    raises KeyboardInterrupt here. Without the handler (a program that imports ``ekm``), nothing."""
+    global _held
+    _held = False
+    check()
 
 
 def received() -> int | None:

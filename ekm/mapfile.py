@@ -104,6 +104,7 @@ def load_maps(path) -> SavedMaps:
     if meta.get("version") not in READABLE:
         raise InputError(f"{where}: map format version {meta.get('version')!r} is not supported "
                          f"(this ekm reads versions {', '.join(map(str, READABLE))})")
+    _check_read_types(meta, where)
     try:
         known = {f.name for f in fields(EKMConfig)}
         ekm_meta = {k: v for k, v in meta["ekm"].items() if k in known}
@@ -150,6 +151,38 @@ def _first_line(exc: BaseException) -> str:
 
 def _finite(x) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+#: The metadata the package reads besides the protocol (:func:`_checked_protocol`), with the JSON type each must
+#: have when present: the rest of the metadata is kept as a record and never read.
+READ_TYPES = {"seed": int, "steps": int, "seconds": float, "world": str, "package_version": str, "jax_version": str}
+
+
+def _check_read_types(meta: dict, where: str) -> None:
+    """Refuse in one line a value of the wrong JSON type where the package reads it: every field of ``ekm`` (as
+    :class:`EKMConfig` types it: ``true`` is no number), ``robot.name`` and :data:`READ_TYPES`."""
+
+    def fits(value, kind) -> bool:
+        if kind is float:
+            return isinstance(value, (int, float)) and not isinstance(value, bool)
+        return isinstance(value, kind) and not (kind is int and isinstance(value, bool))
+
+    ekm_meta = meta.get("ekm")
+    if not isinstance(ekm_meta, dict):
+        raise InputError(f"{where}: metadata 'ekm' must be an object, got {json.dumps(ekm_meta)}")
+    kinds = {"float": float, "int": int, "str": str, "int | None": (int, type(None))}
+    for f in fields(EKMConfig):
+        kind = kinds.get(f.type if isinstance(f.type, str) else f.type.__name__)
+        if f.name in ekm_meta and kind is not None and not (
+                fits(ekm_meta[f.name], int) or ekm_meta[f.name] is None if isinstance(kind, tuple)
+                else fits(ekm_meta[f.name], kind)):
+            raise InputError(f"{where}: metadata 'ekm.{f.name}' must be {f.type}, got {json.dumps(ekm_meta[f.name])}")
+    robot = meta.get("robot")
+    if robot is not None and not (isinstance(robot, dict) and isinstance(robot.get("name", ""), str)):
+        raise InputError(f"{where}: metadata 'robot' must be an object with a name, got {json.dumps(robot)[:60]}")
+    for key, kind in READ_TYPES.items():
+        if key in meta and meta[key] is not None and not fits(meta[key], kind):
+            raise InputError(f"{where}: metadata '{key}' must be {kind.__name__}, got {json.dumps(meta[key])[:60]}")
 
 
 def _checked_protocol(meta: dict, where: str):

@@ -44,10 +44,14 @@ def run_batch(batch: Batch, job_list: list, pool, settings: dict, *, out=None, r
     ``resume`` (an earlier one with the same ``settings``, its jobs kept) receives each as it finishes. The pool
     is closed on return.
 
-    Raises :class:`InputError` for a bad results file before any job runs, :class:`Interrupted` on Ctrl-C."""
+    Raises :class:`InputError` for a bad results file before any job runs, :class:`Interrupted` on Ctrl-C — with
+    a results file, whenever the signal came: the console script holds signals until the file exists."""
+    from ekm import interrupts
+
     store = None
     try:
         store = results_file(out, resume, settings, batch.record_key)
+        interrupts.release()  # a signal the command line held until the file existed raises now (ekm.interrupts)
         done = {}
         if store is not None:
             index = {batch.job_key(j): i for i, j in enumerate(job_list)}

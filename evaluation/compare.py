@@ -73,7 +73,8 @@ def failed_record(job: Job, reason: str, world: str | None = None, family: str |
 def run_job(job: Job) -> dict:
     """Run one job (in whichever process the executor chose): its outcome record, plus ``label``, ``trial``,
     the ``given`` world spelling, the world's ``family`` (generated worlds; None otherwise) and, with
-    ``keep_path``, ``path`` (the centre every 0.128 s, as lists).
+    ``keep_path``, ``path`` (the centre every 0.128 s, as lists) and ``collided_at`` (the centre where each
+    collision began).
 
     A run that cannot be made is a record too, never the end of a comparison: a world the planner finds no
     route through at any cell, or any exception the run raises, gives :func:`failed_record` with the reason
@@ -113,6 +114,7 @@ def run_job(job: Job) -> dict:
     if job.keep_path:
         every = max(1, round(rec.period / (rec.times[1] - rec.times[0]))) if len(rec.times) > 1 else 1
         out["path"] = rec.poses[::every, :2].round(5).tolist()
+        out["collided_at"] = [[round(float(x), 5), round(float(y), 5)] for _, x, y in rec.collision_log]
     return out
 
 
@@ -180,16 +182,19 @@ def wilson(successes: int, n: int, z: float = 1.959964) -> tuple[float, float]:
 def _row(rs: list[dict]) -> dict:
     """The summary of runs ``rs``: ``trials, success_rate, success_ci95, mean_time_s, mean_path_m, collisions,
     trapped, contact_s, failed`` — the means over the runs that reached the goal (None if none did) — and
-    ``motion`` (:func:`motion_summary`)."""
-    ok = [r for r in rs if r["reached"]]
-    lo, hi = wilson(len(ok), len(rs))
-    return {"trials": len(rs), "success_rate": round(len(ok) / len(rs), 4) if rs else None,
-            "success_ci95": [round(lo, 4), round(hi, 4)],
+    ``motion`` (:func:`motion_summary`). The success rate and its interval are over the runs that were made: a
+    run that failed (``failed``: it could not be made) did not drive, so it is no run that missed the goal; with
+    every run failed both are None (``ekm compare`` prints *failed*)."""
+    made = [r for r in rs if "failed" not in r]
+    ok = [r for r in made if r["reached"]]
+    ci = [round(x, 4) for x in wilson(len(ok), len(made))] if made else None
+    return {"trials": len(rs), "success_rate": round(len(ok) / len(made), 4) if made else None,
+            "success_ci95": ci,
             "mean_time_s": round(sum(r["time_s"] for r in ok) / len(ok), 3) if ok else None,
             "mean_path_m": round(sum(r["path_m"] for r in ok) / len(ok), 4) if ok else None,
             "collisions": sum(r["collisions"] for r in rs), "trapped": sum(r["trapped"] for r in rs),
-            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": sum("failed" in r for r in rs),
-            "motion": motion_summary(rs)}
+            "contact_s": round(sum(r["contact_s"] for r in rs), 3), "failed": len(rs) - len(made),
+            "motion": motion_summary(made)}
 
 
 def motion_summary(rs: list[dict]) -> dict:
@@ -247,12 +252,14 @@ def by_architecture(records: list[dict], labels) -> list[dict]:
 
 
 def run_letter(r: dict) -> str:
-    """R reached, T trapped, C arrived after a collision, N no route (at the start, or after a change of the
-    map), L time limit."""
+    """R reached, T trapped, C arrived after a collision, N no route (after a change of the map), L time limit,
+    F failed (the run could not be made: no route at the start, an error, its worker kept dying)."""
+    if "failed" in r:
+        return "F"
     if r["reached"]:
         return "R"
     if r["trapped"]:
         return "T"
     if r["arrived"]:
         return "C"
-    return "N" if "failed" in r or "route" in r["ended"] else "L"
+    return "N" if "route" in r["ended"] else "L"

@@ -3,8 +3,9 @@
 
 Top: for each world a group of bars, one per architecture, the bar the success rate and the whisker its
 Wilson interval. Below: a grid — architectures down, worlds across — each cell the world to scale with
-the path of the comparison's first trial, ending in a green dot (reached), an orange square (trapped) or
-a red cross (anything else). Built on :class:`matplotlib.figure.Figure`, written atomically.
+the path of the comparison's first trial, ending in a green dot (reached), an orange square (trapped), a red
+ring (arrived after a collision: not reached) or a red cross (anything else), with a red cross where each
+collision began. Built on :class:`matplotlib.figure.Figure`, written atomically.
 """
 
 from __future__ import annotations
@@ -60,9 +61,14 @@ def _success_bars(bars, labels, n_groups: int, row) -> None:
     for j, label in enumerate(labels):
         rows = [row(j, i) for i in range(n_groups)]
         ys = [r["success_rate"] or 0.0 for r in rows]
-        err = [[y - r["success_ci95"][0] for y, r in zip(ys, rows)], [r["success_ci95"][1] - y for y, r in zip(ys, rows)]]
-        bars.bar([i - 0.4 + width * (j + 0.5) for i in range(n_groups)], ys, width * 0.9,
-                 color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2, error_kw={"linewidth": 0.8})
+        ci = [r["success_ci95"] or (0.0, 0.0) for r in rows]  # None: every run failed, no bar
+        err = [[y - c[0] for y, c in zip(ys, ci)], [c[1] - y for y, c in zip(ys, ci)]]
+        xs = [i - 0.4 + width * (j + 0.5) for i in range(n_groups)]
+        bars.bar(xs, ys, width * 0.9, color=_COLOURS[j % len(_COLOURS)], label=label, yerr=err, capsize=2,
+                 error_kw={"linewidth": 0.8})
+        for x, r in zip(xs, rows):
+            if r["success_rate"] is None:
+                bars.text(x, 0.02, "failed", rotation=90, ha="center", va="bottom", fontsize=7, color="#b2182b")
     bars.set(ylim=(0, 1.05), ylabel="success rate")
     bars.legend(fontsize=7, ncols=min(len(labels), 4), loc="upper center", bbox_to_anchor=(0.5, -0.28), frameon=False)
     bars.grid(axis="y", alpha=0.3)
@@ -103,6 +109,18 @@ def _draw_cell(ax, world, record) -> None:
     if record is not None and "path" in record:
         path = np.asarray(record["path"])
         ax.plot(path[:, 0], path[:, 1], "-", color="tab:blue", lw=0.9)
-        marker = ("o", "tab:green") if record["reached"] else (("s", "darkorange") if record["trapped"] else ("x", "red"))
+        for x, y in record.get("collided_at") or []:  # where it collided, not where it ended
+            ax.plot([x], [y], "x", color="red", ms=5, mew=1.5)
+        marker = end_marker(record)
         ax.plot(path[-1, 0], path[-1, 1], marker[0], color=marker[1], ms=5, mew=1.5, fillstyle="none")
     ax.set(xlim=(-0.02, w + 0.02), ylim=(-0.02, h + 0.02), aspect="equal", xticks=[], yticks=[])
+
+
+def end_marker(record: dict) -> tuple[str, str]:
+    """The marker and colour at the end of a run's path: reached, trapped, arrived after a collision (a ring: the
+    collisions have their own crosses), or neither."""
+    if record["reached"]:
+        return ("o", "tab:green")
+    if record["trapped"]:
+        return ("s", "darkorange")
+    return ("o", "red") if record.get("arrived") else ("x", "red")

@@ -18,7 +18,6 @@ from matplotlib import patches
 from matplotlib.figure import Figure
 
 from ekm.errors import InputError
-from ekm.files import atomic_write
 from evaluation.match import MatchRecord
 from robots.params import KHEPERA
 from robots.plot import save_figure
@@ -78,10 +77,12 @@ def save_match(rec: MatchRecord, path: str | os.PathLike, dpi: int = 130) -> Pat
 
 
 def save_match_animation(rec: MatchRecord, path: str | os.PathLike, fps: float = 20.0, speed: float = 8.0,
-                         max_frames: int = 600, dpi: int = 80) -> Path:
-    """Play the game as a GIF at ``speed``× real time (thinned to at most ``max_frames`` frames)."""
-    from matplotlib.animation import FuncAnimation, PillowWriter
+                         max_frames: int = 600, dpi: int = 80, progress: bool = False) -> Path:
+    """Play the game as a GIF at ``speed``× real time (thinned to at most ``max_frames`` frames); ``progress``: a
+    bar of the frames on stderr (:func:`robots.plot.save_gif`)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from robots.plot import save_gif
 
     path = Path(path)
     _check_writable(path, "animation")
@@ -112,13 +113,7 @@ def save_match_animation(rec: MatchRecord, path: str | os.PathLike, fps: float =
                      fontsize="small")
         return []
 
-    try:
-        with atomic_write(path) as tmp:
-            anim = FuncAnimation(fig, update, frames=frames, blit=False, repeat=False, cache_frame_data=False)
-            anim.save(tmp, writer=PillowWriter(fps=fps), dpi=dpi)
-    except OSError as exc:
-        raise InputError(f"{path}: cannot write the animation ({exc.strerror or exc})") from None
-    return path
+    return save_gif(fig, update, frames, path, fps=fps, dpi=dpi, progress=progress)
 
 
 def save_standings(rows: list[dict], path: str | os.PathLike, title: str = "", dpi: int = 130) -> Path:

@@ -54,13 +54,78 @@ def _read(path: Path) -> tuple[dict, list[dict], int]:
         raise InputError(f"{path}: not an ekm results file (ekm compare or tournament --out; its first line is "
                          f"not the header of format {FORMAT})")
     records = []
+    what = kind(head["settings"])
     for n, line in enumerate(lines[1:], 2):
         try:
             entry = json.loads(line)
             records.append(entry["outcome"])
         except (json.JSONDecodeError, KeyError, TypeError):
             raise InputError(f"{path}: line {n}: not a finished run or game") from None
+        check_record(records[-1], what, f"{path}: line {n}")
     return head["settings"], records, len(whole)
+
+
+#: What the tables read of each record, by the kind of file (:func:`kind`), as ``{key: type}``: "string",
+#: "integer", "number", "boolean", a type ending in "?" may be null; ``failed`` (the reason), a generated world's
+#: ``family`` and the motion measures (:data:`evaluation.motion.KEYS`) may be absent.
+RECORD_KEYS = {
+    "comparison": {"given": "string", "world": "string", "label": "string", "trial": "integer", "reached": "boolean",
+                   "trapped": "boolean", "arrived": "boolean", "ended": "string", "collisions": "integer",
+                   "contact_s": "number", "time_s": "number?", "path_m": "number?"},
+    "tournament": {"pair": "pair", "seed": "integer", "players": "list", "goals": "pair?", "winner": "integer?"},
+}
+
+
+def check_record(record, what: str, where: str) -> None:
+    """Refuse, in one line naming ``where`` (the file and line) and the key, a record read back from a results
+    file that lacks a key the tables read (:data:`RECORD_KEYS`) or has one of the wrong type — checked as a world
+    file is (:class:`robots.worldfile.Checker`), so that a hand-edited or damaged line is never counted as a run."""
+    from robots.worldfile import _Checker as Checker
+
+    ck = Checker(where)
+    if not isinstance(record, dict):
+        ck.fail("outcome", f"must be an object, got {type(record).__name__}")
+    optional = {"failed": "string?"}
+    if what == "comparison":
+        from evaluation.motion import KEYS
+
+        optional.update({"family": "string?"}, **{k: "number?" for k in KEYS})
+    for name, type_ in {**RECORD_KEYS.get(what, {}), **optional}.items():
+        key = f"outcome.{name}"
+        if name not in record:
+            if name not in optional:
+                ck.fail(key, "missing")
+            continue
+        value = record[name]
+        if type_.endswith("?"):
+            if value is None:
+                continue
+            type_ = type_[:-1]
+        if type_ == "pair":
+            ck.vector(value, key, 2, "a pair of whole numbers")
+            for i, v in enumerate(value):
+                ck.integer(v, f"{key}[{i}]")
+        elif type_ == "number":
+            ck.number(value, key, nonneg=True)
+        else:
+            getattr(ck, type_)(value, key)
+    if what == "comparison" and record["reached"]:
+        for name in ("time_s", "path_m"):  # the means of the runs that reached the goal
+            if record[name] is None:
+                ck.fail(f"outcome.{name}", "must be a number for a run that reached the goal, got null")
+
+
+def kind(settings: dict) -> str:
+    """Which command's results file ``settings`` (its header's) are: "tournament", "comparison", or "another
+    command" (settings of neither)."""
+    if "tournament" in settings:
+        return "tournament"
+    return "comparison" if all(k in settings for k in ("worlds", "labels", "trials", "seed", "config")) \
+        else "another command"
+
+
+#: The command that writes each kind of results file.
+COMMAND = {"comparison": "compare", "tournament": "tournament"}
 
 
 def read(path) -> tuple[dict, list[dict]]:
@@ -85,6 +150,9 @@ class ResultsFile:
         self.appended = 0  # runs written by this process
         if resume:
             old, records, length = _read(self.path)
+            if kind(old) != kind(settings):
+                raise InputError(f"--resume {self.path}: {whose(kind(old))} results file, not a {kind(settings)}'s "
+                                 f"(ekm {COMMAND.get(kind(settings))} --out writes those)")
             difference = _difference(old, settings)
             if difference:
                 raise InputError(f"--resume {self.path}: made with other settings ({difference})")
@@ -126,6 +194,11 @@ class ResultsFile:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def whose(what: str) -> str:
+    """``"a tournament's"``, ``"another command's"``: the article and the possessive of :func:`kind`'s answer."""
+    return f"{'' if what.startswith('another') else 'a '}{what}'s"
 
 
 #: The settings in the order a difference is reported: the first that differs is the one a user changed.

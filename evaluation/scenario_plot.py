@@ -30,7 +30,6 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ekm.errors import InputError
-from ekm.files import atomic_write
 from evaluation.scenario import RunRecord
 from robots.params import KHEPERA
 from robots.plot import STYLE, draw_fixed, draw_shape, frame, save_figure
@@ -304,8 +303,9 @@ def _checkpoint_state(rec: RunRecord, t: float):
 
 
 def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, speed: float = 2.5,
-                   max_frames: int = 300, dpi: int = 80) -> Path:
-    """Write the run as a GIF at ``path`` (``.gif``) and return the path.
+                   max_frames: int = 300, dpi: int = 80, progress: bool = False) -> Path:
+    """Write the run as a GIF at ``path`` (``.gif``) and return the path; ``progress``: a bar of the frames on
+    stderr.
 
     Each frame shows the world (event shapes appear at their time), the trail so far, the robot at its
     pose with its heading, the moving obstacles and a moving goal where they are, the plan being followed
@@ -314,10 +314,10 @@ def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, s
     simulated second), at most ``max_frames`` of them (a longer run plays faster): a 15 s run is ~150
     frames, ~0.6 MB at the default dpi. The static parts are rendered once (see :func:`_freeze_background`).
 
-    Written atomically with :class:`matplotlib.animation.PillowWriter` (temporary ``.gif`` next to
-    ``path``, then a rename); an unwritable path raises :class:`ekm.errors.InputError` and leaves no file.
+    Written atomically by :func:`robots.plot.save_gif` (temporary ``.gif`` next to ``path``, then a rename); an
+    unwritable path raises :class:`ekm.errors.InputError` and leaves no file.
     """
-    from matplotlib.animation import FuncAnimation, PillowWriter
+    from robots.plot import save_gif
 
     path = Path(path)
     if path.suffix.lower() != ".gif":
@@ -408,14 +408,7 @@ def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, s
     dynamic = [trail, body, heading, plan_line, plan_dots, current, goal, hits, traps, sensed, ax.title, *movers]
     dynamic += [p for items in events.values() for p, _ in items]
     _freeze_background(fig, ax, dynamic)
-    try:
-        with atomic_write(path) as tmp:
-            anim = FuncAnimation(fig, update, frames=times, init_func=lambda: [], blit=False, repeat=False,
-                                 cache_frame_data=False)
-            anim.save(tmp, writer=PillowWriter(fps=fps), dpi=dpi)
-    except OSError as exc:
-        raise InputError(f"{path}: cannot write the animation ({exc.strerror or exc})") from None
-    return path
+    return save_gif(fig, update, times, path, fps=fps, dpi=dpi, progress=progress, init_func=lambda: [])
 
 
 def _freeze_background(fig, ax, dynamic: list) -> None:

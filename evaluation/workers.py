@@ -63,8 +63,13 @@ class InProcess:
         pass
 
 
+#: A local pool whose workers all died before any of them started, this many pools in a row, stops the batch.
+DEAD_AT_START = 2
+
+
 class LocalPool:
-    """``n`` spawned worker processes, made again when one dies."""
+    """``n`` spawned worker processes, made again when one dies — unless every worker of :data:`DEAD_AT_START`
+    pools in a row died before it started (:meth:`renew`)."""
 
     def __init__(self, run, n: int):
         self.run, self.n = run, n
@@ -72,14 +77,17 @@ class LocalPool:
         self.breaks_whole = True  # one dead worker breaks the pool: every run in flight fails with it
         self.where = f"{n} local workers"
         self._pool = None
+        self._started = None  # how many of the pool's workers got through their start (the initializer's count)
+        self._dead_at_start = 0
 
     def _new(self):
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
 
         context = multiprocessing.get_context("spawn")
+        self._started = context.Value("i", 0)
         return ProcessPoolExecutor(self.n, mp_context=context, initializer=_start_worker,
-                                   initargs=(context.Value("i", 0),))
+                                   initargs=(self._started,))
 
     def submit(self, job) -> Future:
         if self._pool is None:
@@ -94,8 +102,16 @@ class LocalPool:
         return isinstance(exc, (BrokenProcessPool, OSError))
 
     def renew(self) -> None:
-        """Drop the broken pool (and any of its processes still alive); the next run starts a new one."""
+        """Drop the broken pool (and any of its processes still alive); the next run starts a new one.
+
+        Raises :class:`InputError` (:func:`died_at_start`) when no worker of this pool nor of the one before
+        started: every run would fail the same way, so the batch stops with the cause instead of a table of
+        failed runs."""
+        started = self._started is not None and self._started.value > 0
+        self._dead_at_start = 0 if started else self._dead_at_start + 1
         self.stop()
+        if self._dead_at_start >= DEAD_AT_START:
+            raise InputError(died_at_start(self._dead_at_start))
 
     def stop(self) -> None:
         """End every worker now: their runs in flight are lost, nothing else is."""
@@ -154,9 +170,68 @@ class DaskWorkers:
         self.client.close()
 
 
+def died_at_start(pools: int) -> str:
+    """The one line of a batch whose local workers all died as they started, ``pools`` pools in a row: the
+    script that runs the batch again in each worker it spawns (:func:`unguarded_script`), or what to look at."""
+    script = unguarded_script()
+    if script is not None:
+        return (f"{script}: every worker process died as it started: a spawned worker imports the script, which "
+                f"starts the work again; put the work in a function main() and end the script with the two lines "
+                f"'if __name__ == \"__main__\":' and '    main()' (or run it with workers=1)")
+    return (f"every worker process died as it started ({pools} pools in a row), before any run began; its error is "
+            f"above on stderr (workers=1, --workers 1, runs in this process)")
+
+
+def unguarded_script() -> str | None:
+    """The path of the ``__main__`` script if the statement of it that is running now is outside an
+    ``if __name__ == "__main__":`` block — so that a spawned worker, which imports the script under another
+    name, runs that statement again — else None (no script: a notebook, ``python -c``, the console script)."""
+    import ast
+    import sys
+
+    main = sys.modules.get("__main__")
+    path = getattr(main, "__file__", None)
+    frame = sys._getframe()
+    while frame is not None and not (frame.f_globals is vars(main) and frame.f_code.co_name == "<module>"):
+        frame = frame.f_back
+    if path is None or frame is None:
+        return None
+    try:
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read())
+    except (OSError, SyntaxError, ValueError):
+        return None
+
+    def is_main(test) -> bool:
+        if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], ast.Eq)):
+            return False
+        sides = [test.left, test.comparators[0]]
+        return (any(isinstance(x, ast.Name) and x.id == "__name__" for x in sides)
+                and any(isinstance(x, ast.Constant) and x.value == "__main__" for x in sides))
+
+    line = frame.f_lineno
+    guarded = any(isinstance(node, ast.If) and is_main(node.test) and node.lineno <= line <= node.end_lineno
+                  for node in ast.walk(tree))
+    return None if guarded else path
+
+
+def spawning() -> bool:
+    """True in a spawned worker that is still starting: it imports the parent's ``__main__`` script, and a
+    statement of the script outside ``if __name__ == "__main__":`` is asking for workers again."""
+    from multiprocessing import process
+
+    return bool(getattr(process.current_process(), "_inheriting", False))
+
+
 def workers_for(run, workers: int | None, scheduler: str | None):
     """The workers a comparison's runs go to: a Dask cluster's (``scheduler``), this process (``workers`` 1)
-    or a local pool (default: one worker per core)."""
+    or a local pool (default: one worker per core).
+
+    In a spawned worker that is still starting (:func:`spawning`: its parent's script has no ``__main__``
+    guard) the worker leaves at once, quietly — the parent names the cause (:func:`died_at_start`) rather than
+    each worker printing a traceback."""
+    if spawning():
+        raise SystemExit(3)
     if scheduler:
         return DaskWorkers(run, scheduler)
     workers = workers or os.cpu_count() or 1

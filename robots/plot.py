@@ -179,6 +179,34 @@ def frame(ax, world: World) -> None:
     ax.set_ylabel("y (m)")
 
 
+def save_gif(fig, update, frames, path: str | os.PathLike, *, fps: float, dpi: int, progress: bool = False,
+             init_func=None) -> Path:
+    """Animate ``fig`` — ``update(frame)`` for each of ``frames`` — into a GIF at ``path``, atomically (temporary
+    file + rename), with :class:`matplotlib.animation.PillowWriter`; returns the path. ``progress``: a bar of the
+    frames written on stderr (a long game's GIF takes a minute). The one GIF writer of the package (``ekm run
+    --gif``, ``ekm match --gif``); a path that cannot be written raises :class:`ekm.errors.InputError`."""
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    path = Path(path)
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(frames), unit="frame", desc=f"writing {path.name}", dynamic_ncols=True)
+    try:
+        with atomic_write(path) as tmp:
+            anim = FuncAnimation(fig, update, frames=frames, init_func=init_func, blit=False, repeat=False,
+                                 cache_frame_data=False)
+            anim.save(tmp, writer=PillowWriter(fps=fps), dpi=dpi,
+                      progress_callback=None if bar is None else lambda i, n: bar.update(1))
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write the animation ({exc.strerror or exc})") from None
+    finally:
+        if bar is not None:
+            bar.close()
+    return path
+
+
 def save_figure(fig, path: str | os.PathLike, dpi: int = 150) -> Path:
     """Write ``fig`` to ``path`` (format from the suffix) atomically: temp file + rename. Returns the path.
 

@@ -90,8 +90,10 @@ class Registry:
         """The thing called ``name``, or an :class:`InputError` that names the known ones."""
         known = self.all()
         if name not in known:
-            raise InputError(f"{self.kind} {name!r}: unknown (choose from {', '.join(known)}; ekm {self.plural} "
-                             f"describes them)")
+            from robots.spelling import did_you_mean
+
+            raise InputError(f"{self.kind} {name!r}: unknown{did_you_mean(name, known)} (choose from "
+                             f"{', '.join(known)}; ekm {self.plural} describes them)")
         return known[name]
 
     def origin(self, name: str) -> str:

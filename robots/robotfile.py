@@ -169,7 +169,10 @@ def load_robot(robot) -> RobotParams:
     if path.is_file():
         text = read_text(path, source, "robot")
     else:
-        raise InputError(f"{source}: no such robot file or named robot (named robots: {', '.join(named_robots())})")
+        from robots.spelling import did_you_mean
+
+        raise InputError(f"{source}: no such robot file or named robot{did_you_mean(source, named_robots())} "
+                         f"(named robots: {', '.join(named_robots())})")
     return parse_robot(decode(text, source), source)
 
 

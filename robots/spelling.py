@@ -100,6 +100,16 @@ def parse_named(text: str, what: str, names, make) -> list:
     return items
 
 
+def did_you_mean(name, names) -> str:
+    """``"; did you mean 'fields'?"`` — the known name closest to a misspelt ``name`` (:mod:`difflib`'s ratio at
+    least 0.6) — or "" when none is close: what every "unknown" line of a name adds (architectures, players,
+    families, learning rules, worlds, robots)."""
+    import difflib
+
+    close = difflib.get_close_matches(str(name), [str(n) for n in names], n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
 def parse_one(text: str, what: str, parse):
     """Exactly one item of ``parse(text)`` (``ekm run --architecture``, ``ekm match A B``)."""
     items = parse(text)

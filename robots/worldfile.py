@@ -491,8 +491,11 @@ def load_world(name_or_path: str | Path) -> World:
             if spelt is not None:
                 return generate(*spelt)
         if not path.is_file():
+            from robots.spelling import did_you_mean
+
             names = ", ".join(named_worlds())
-            raise InputError(f"{text_source}: no such world file or named world (named worlds: {names}; "
+            close = did_you_mean(text_source, named_worlds())
+            raise InputError(f"{text_source}: no such world file or named world{close} (named worlds: {names}; "
                              f"or a generated world, FAMILY:SEED[:DIFFICULTY])")
         text = read_text(path, text_source, "world")
         source = text_source

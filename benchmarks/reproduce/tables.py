@@ -185,12 +185,15 @@ def ch61():
 # ------------------------------------------------------------------------------------------ rendering
 
 def _count(r) -> str:
-    return f"{round(r['success_rate'] * r['trials'])}/{r['trials']}"
+    if r["success_rate"] is None:
+        return "failed"
+    made = r["trials"] - r["failed"]
+    return f"{round(r['success_rate'] * made)}/{made}"
 
 
 def _cell(r, *, ci=False, time=False, path=False, trapped=False, collisions=False, best=False) -> str:
     text = f"**{_count(r)}**" if best else _count(r)
-    parts = [text + (f" ({r['success_ci95'][0]:.2f}–{r['success_ci95'][1]:.2f})" if ci else "")]
+    parts = [text + (f" ({r['success_ci95'][0]:.2f}–{r['success_ci95'][1]:.2f})" if ci and r["success_ci95"] else "")]
     if time and r["mean_time_s"] is not None:
         parts.append(f"{r['mean_time_s']:.1f} s")
     if path and r["mean_path_m"] is not None:
@@ -210,7 +213,7 @@ def _grid(rows_of, keys, labels, key_name, name_of, heads=None, **cell) -> list[
              "|---|" + "---|" * len(labels)]
     for key in keys:
         rs = [rows_of(key, a) for a in labels]
-        rates = [r["success_rate"] for r in rs]
+        rates = [r["success_rate"] or 0.0 for r in rs]
         top, shared = max(rates), len(set(rates)) == 1
         lines.append(f"| {name_of(key)} | " + " | ".join(
             _cell(r, best=r["success_rate"] == top and top > 0 and not shared, **cell) for r in rs) + " |")
@@ -387,7 +390,8 @@ def _robots_grid(kind: str, key: str) -> list[str]:
         totals = {}
         for r in (t.rows if kind == "named" else [f for f in t.families if f["family"] == "all"]):
             k, n = totals.get(r["architecture"], (0, 0))
-            totals[r["architecture"]] = (k + round(r["success_rate"] * r["trials"]), n + r["trials"])
+            made = r["trials"] - r["failed"]
+            totals[r["architecture"]] = (k + round((r["success_rate"] or 0.0) * made), n + made)
         from evaluation.compare import wilson
 
         cells = []

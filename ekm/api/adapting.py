@@ -45,11 +45,11 @@ class AdaptationTable(Result):
         return adaptation_figure(list(self.rows))
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
-        from ekm.api.checks import output_path
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from robots.plot import save_figure
 
-        out = output_path(path, "--plot", ".png")
+        out = plot_path(path, "--plot")
         save_figure(self.plot(), out, dpi=100)
         return out
 

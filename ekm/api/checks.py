@@ -26,8 +26,11 @@ def sign_problem(value, strict: bool, shown: str | None = None) -> str | None:
 
 
 def invalid_choice(value, choices) -> str:
-    """argparse's wording for a value not among ``choices``."""
-    return f"invalid choice: {value!r} (choose from {', '.join(map(repr, choices))})"
+    """argparse's wording for a value not among ``choices``, with the closest of them
+    (:func:`robots.spelling.did_you_mean`)."""
+    from robots.spelling import did_you_mean
+
+    return f"invalid choice: {value!r}{did_you_mean(value, choices)} (choose from {', '.join(map(repr, choices))})"
 
 
 def _fail(prog: str, option: str, problem: str):
@@ -63,20 +66,29 @@ def choice(value, choices, option: str, prog: str) -> str:
     return value
 
 
-def output_path(text, option: str, suffix: str) -> Path:
-    """Check an output path before long work starts: not a directory, the right suffix, a directory
-    that exists (it is created) and can be written."""
+#: The formats a plot is written in, by the file's suffix (matplotlib's): a PNG for the screen, SVG and PDF for papers.
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def output_path(text, option: str, suffix: str | tuple[str, ...]) -> Path:
+    """Check an output path before long work starts: not a directory, a suffix of ``suffix`` (one or several),
+    in a directory that exists — a missing one is refused, not made — and can be written."""
     import os
 
+    suffixes = (suffix,) if isinstance(suffix, str) else tuple(suffix)
+    wanted = " or ".join(filter(None, (", ".join(suffixes[:-1]), suffixes[-1])))
     path = Path(text)
     if path.is_dir():
-        raise InputError(f"{option} {text}: is a directory, expected a {suffix} file")
-    if path.suffix.lower() != suffix:
-        raise InputError(f"{option} {text}: expected a file name ending in {suffix}")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"{option} {text}: cannot create its directory ({exc.strerror or exc})") from None
+        raise InputError(f"{option} {text}: is a directory, expected a {wanted} file")
+    if path.suffix.lower() not in suffixes:
+        raise InputError(f"{option} {text}: expected a file name ending in {wanted}")
+    if not path.parent.is_dir():
+        raise InputError(f"{option} {text}: no such directory {path.parent} (make it first)")
     if not os.access(path.parent, os.W_OK):
         raise InputError(f"{option} {text}: its directory is not writable")
     return path
+
+
+def plot_path(text, option: str = "--plot") -> Path:
+    """:func:`output_path` of a plot: PNG, SVG or PDF by its suffix (:data:`PLOT_SUFFIXES`)."""
+    return output_path(text, option, PLOT_SUFFIXES)

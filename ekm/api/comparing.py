@@ -17,7 +17,8 @@ _PROG = "ekm compare"
 class Table(Result):
     """A comparison: ``rows``, one per architecture and world (architectures in the order given, worlds
     within each), each a dict with ``world``, ``architecture``, ``trials``, ``success_rate`` and its 95 %
-    Wilson interval ``success_ci95``, ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
+    Wilson interval ``success_ci95`` over the runs that were made (both None when every run ``failed``),
+    ``mean_time_s`` and ``mean_path_m`` of the successes, ``collisions``,
     ``trapped`` and ``runs_by_trial`` (a letter per trial); ``seconds`` the wall time and ``workers`` where
     the runs went. ``families``: with generated worlds, one row per family and architecture (and
     ``"all"``), each with the number of ``worlds`` and the same summary over their runs. ``overall``: one row
@@ -67,11 +68,11 @@ class Table(Result):
         return comparison_figure(list(self.rows), list(self.records), list(self.worlds), list(self.labels))
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
-        from ekm.api.checks import output_path
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from robots.plot import save_figure
 
-        out = output_path(path, "--plot", ".png")
+        out = plot_path(path, "--plot")
         save_figure(self.plot(), out, dpi=110)
         return out
 
@@ -103,7 +104,10 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
     for item in items:
         family, sep, count = item.partition(":")
         if family not in FAMILIES:
-            raise InputError(f"--suite {item!r}: unknown family {family!r} (families: {', '.join(FAMILIES)})")
+            from robots.spelling import did_you_mean
+
+            raise InputError(f"--suite {item!r}: unknown family {family!r}{did_you_mean(family, FAMILIES)} "
+                             f"(families: {', '.join(FAMILIES)})")
         try:
             n = int(count) if sep else -1
         except ValueError:
@@ -152,7 +156,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     workers : int, optional
         Local worker processes (default: the machine's cores; 1 runs in this process). Worker processes
         are spawned, so a script that calls :func:`compare` with several needs the usual
-        ``if __name__ == "__main__":`` guard (a notebook does not).
+        ``if __name__ == "__main__":`` guard (a notebook does not); without it every worker dies as it
+        starts and :class:`ekm.InputError` names the script and the guard.
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:8786``; needs ``ekm[cluster]``) to send the runs to.
     out : path, optional
@@ -179,6 +184,8 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
 
     Raises
     ------
+    ekm.InputError
+        Bad arguments; or every local worker died as it started (a script without the ``__main__`` guard).
     ekm.Interrupted
         On Ctrl-C or SIGTERM in the console script: the workers are stopped and the message says how many
         runs the results file keeps and how to resume.
@@ -250,13 +257,13 @@ def load_comparison(path) -> Table:
     Raises :class:`ekm.InputError` if the file is not a results file or does not hold every run (then
     ``ekm compare … --resume PATH`` finishes it)."""
     from evaluation.compare import by_architecture, by_family, summarize
-    from evaluation.results import key, read
+    from evaluation.results import key, kind, read, whose
     from evaluation.scenario import ScenarioConfig
 
     settings, records = read(path)
-    if not all(k in settings for k in ("worlds", "labels", "trials", "seed", "config")):
-        what = "a tournament's" if "tournament" in settings else "another command's"
-        raise InputError(f"{path}: {what} results file, not a comparison's (ekm compare --out writes those)")
+    if kind(settings) != "comparison":
+        raise InputError(f"{path}: {whose(kind(settings))} results file, not a comparison's (ekm compare --out "
+                         f"writes those)")
     names, labels, trials = settings["worlds"], settings["labels"], settings["trials"]
     have = {key(r["given"], r["label"], r["trial"]): r for r in records}
     want = [key(w, a, i) for w in names for i in range(trials) for a in labels]

@@ -127,19 +127,19 @@ class Outcome(Result):
         return draw_run(ax, self.record)
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
-        from ekm.api.checks import output_path
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from evaluation.scenario_plot import save_run
 
-        return save_run(self.record, output_path(path, "--plot", ".png"))
+        return save_run(self.record, plot_path(path, "--plot"))
 
-    def save_animation(self, path) -> Path:
-        """The run animated, to a GIF at ``path``; returns the path."""
+    def save_animation(self, path, progress: bool = False) -> Path:
+        """The run animated, to a GIF at ``path``; returns the path. ``progress``: a bar of the frames on stderr."""
         from ekm.api.checks import output_path
         from evaluation.scenario_plot import save_animation
 
         out = output_path(path, "--gif", ".gif")
-        save_animation(self.record, out)
+        save_animation(self.record, out, progress=progress)
         return out
 
 

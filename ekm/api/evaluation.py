@@ -81,11 +81,12 @@ class Metrics(Result):
         return Evaluation((self,)).plot()
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path``; returns the path."""
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path``; returns the path."""
         return Evaluation((self,)).save_plot(path)
 
     def save_paths(self, path) -> Path:
-        """The first trial's paths through the first 10 test targets, to a PNG at ``path``."""
+        """The first trial's paths through the first 10 test targets, to a PNG, SVG or PDF (by its suffix) at
+        ``path``."""
         return Evaluation((self,)).save_paths(path)
 
 
@@ -115,23 +116,23 @@ class Evaluation(Result):
         return figure_6_1_6_2([m.maps.figure_entry(m.label, m.to_dict()) for m in self.items])
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path``; returns the path."""
-        from ekm.api.checks import output_path
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path``; returns the path."""
+        from ekm.api.checks import plot_path
         from robots.plot import save_figure
 
-        out = output_path(path, "--plot", ".png")
+        out = plot_path(path, "--plot")
         save_figure(self.plot(), out, dpi=110)
         return out
 
     def save_paths(self, path) -> Path:
         """Each map's first trial through the first 10 test targets (the same targets and noise as the
-        test), one panel per map, to a PNG at ``path``; returns the path."""
-        from ekm.api.checks import output_path
+        test), one panel per map, to a PNG, SVG or PDF (by its suffix) at ``path``; returns the path."""
+        from ekm.api.checks import plot_path
         from evaluation.metrics import summarize
         from evaluation.plots import save_paths_figure
         from evaluation.protocol import trace_paths
 
-        out = output_path(path, "--paths", ".png")
+        out = plot_path(path, "--paths")
         panels = []
         for m in self.items:
             saved = m.maps

@@ -92,11 +92,11 @@ class Maps(SavedMaps, Result):
         return figure_6_1_6_2([self.figure_entry()])
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` written to a PNG at ``path`` (atomically); returns the path."""
-        from ekm.api.checks import output_path
+        """:meth:`plot` written to a PNG, SVG or PDF (by its suffix) at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from robots.plot import save_figure
 
-        out = output_path(path, "--plot", ".png")
+        out = plot_path(path, "--plot")
         save_figure(self.plot(), out, dpi=110)
         return out
 

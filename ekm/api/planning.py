@@ -55,11 +55,13 @@ class Plan(Result):
         return ax
 
     def save_plot(self, path) -> Path:
-        """:meth:`plot` to a PNG at ``path`` (atomically); returns the path."""
+        """:meth:`plot` to a PNG, SVG or PDF (by its suffix) at ``path`` (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from planner.plot import save_plan
 
-        save_plan(path, self.plan, self.world, self.at, title=self.title)
-        return Path(path)
+        out = plot_path(path, "--plot")
+        save_plan(out, self.plan, self.world, self.at, title=self.title)
+        return out
 
 
 def plan(world, start=None, goal=None, *, cell: float | None = None, method: str = "slippery",

@@ -108,19 +108,21 @@ class MatchResult(Result):
         return {**self.record.outcome(), "field": self.field.name, **provenance()}
 
     def save_plot(self, path) -> Path:
-        """The field, both robots' paths, the ball's and a star at every goal, to a PNG at ``path`` (atomically);
+        """The field, both robots' paths, the ball's and a star at every goal, to a PNG, SVG or PDF (by its suffix)
+        at ``path`` (atomically);
         returns the path."""
-        from ekm.api.checks import output_path
+        from ekm.api.checks import plot_path
         from evaluation.match_plot import save_match
 
-        return save_match(self.record, output_path(path, "--plot", ".png"))
+        return save_match(self.record, plot_path(path, "--plot"))
 
-    def save_animation(self, path) -> Path:
-        """The game as a GIF at ``path`` (atomically); returns the path."""
+    def save_animation(self, path, progress: bool = False) -> Path:
+        """The game as a GIF at ``path`` (atomically); returns the path. ``progress``: a bar of the frames on stderr
+        (a ten-minute game's GIF takes about a minute)."""
         from ekm.api.checks import output_path
         from evaluation.match_plot import save_match_animation
 
-        return save_match_animation(self.record, output_path(path, "--gif", ".gif"))
+        return save_match_animation(self.record, output_path(path, "--gif", ".gif"), progress=progress)
 
 
 def match(first, second, *, field="lci-cup", minutes: float = 10.0, seed: int = 0, rule: str | None = None,
@@ -252,11 +254,12 @@ class TournamentResult(Result):
 
     def save_plot(self, path) -> Path:
         """Each player's mean goal difference per game and win rate with their 95 % intervals
-        (:func:`evaluation.match_plot.save_standings`), to a PNG at ``path`` (atomically); returns the path."""
-        from ekm.api.checks import output_path
+        (:func:`evaluation.match_plot.save_standings`), to a PNG, SVG or PDF (by its suffix) at ``path``
+        (atomically); returns the path."""
+        from ekm.api.checks import plot_path
         from evaluation.match_plot import save_standings
 
-        out = output_path(path, "--plot", ".png")
+        out = plot_path(path, "--plot")
         title = (f"{len(self.records)} games: {self.seeds} seeds a pairing, {self.minutes:g} min each, "
                  f"rule {self.rule}, field {self.field}")
         return save_standings(list(self.standings), out, title=title)

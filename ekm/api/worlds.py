@@ -51,17 +51,17 @@ class Worlds(Result):
 
     def save_plots(self, directory) -> list[Path]:
         """Draw each world to scale to ``directory/NAME.png`` (created; each PNG written atomically) — or, for
-        one world and a path ending in ``.png``, to that file; returns the paths written."""
+        one world and a path ending in ``.png``, ``.svg`` or ``.pdf``, to that file; returns the paths written."""
         import re
 
-        from ekm.api.checks import output_path
+        from ekm.api.checks import PLOT_SUFFIXES, plot_path
         from robots.plot import plot_world, save_figure
 
-        if str(directory).lower().endswith(".png"):
+        if str(directory).lower().endswith(PLOT_SUFFIXES):
             if len(self.items) != 1:
-                raise InputError(f"--plot {directory}: a PNG holds one world, and there are {len(self.items)}; "
+                raise InputError(f"--plot {directory}: a plot file holds one world, and there are {len(self.items)}; "
                                  f"give a directory")
-            out = output_path(directory, "--plot", ".png")
+            out = plot_path(directory, "--plot")
             try:
                 return [save_figure(plot_world(self.items[0]).figure, out)]
             except OSError as exc:

@@ -34,6 +34,13 @@ class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (``ekm train: --steps: must be > 0``) and exit status 2."""
 
     def error(self, message):
+        import re
+
+        from ekm.api.checks import invalid_choice
+
+        wrong = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", message)
+        if wrong:  # argparse's own choices: with the closest one, as every other unknown name
+            message = message[:wrong.start()] + invalid_choice(wrong[1], re.findall(r"'([^']*)'", wrong[2]))
         raise InputError(f"{self.prog}: {message}")
 
 
@@ -48,14 +55,39 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def parse(parser, argv: list[str]):
+    """``parser.parse_args(argv)``, but words it does not know are refused naming the command — and, after a word
+    ending in a comma, the space that split a list (``--architectures fields, samba``)."""
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        raise InputError(unrecognized(f"ekm {args.command}", argv, extra))
+    return args
+
+
+def unrecognized(prog: str, argv: list[str], extra: list[str]) -> str:
+    """The one line for the words ``extra`` of ``argv`` that no option of ``prog`` takes."""
+    for word in extra:
+        i = argv.index(word) if word in argv else -1
+        if i > 0 and argv[i - 1].endswith(","):
+            return (f"{prog}: {' '.join(argv[max(0, i - 2):i + 1])}: a space after a comma ends the list, leaving "
+                    f"{word!r} over; write {argv[i - 1]}{word}")
+    return f"{prog}: unrecognized arguments: {' '.join(extra)}"
+
+
 def main(argv=None) -> int:
-    """Run ``ekm ARGV…``; returns the exit status: 0, 2 for bad input, 130 (143 for SIGTERM) when stopped."""
+    """Run ``ekm ARGV…``; returns the exit status: 0, 2 for bad input, 130 (143 for SIGTERM) when stopped.
+
+    Signals held since the console script started (:mod:`ekm.interrupts`) are released once the arguments are
+    read — by the batch runner instead, once its results file exists, for a command whose parser says so
+    (``holds_signals(args)``: ``ekm compare`` and ``ekm tournament`` with ``--out`` or ``--resume``)."""
     from ekm import interrupts
 
     command = "ekm"
     try:
-        args = build_parser().parse_args(argv)
+        args = parse(build_parser(), sys.argv[1:] if argv is None else list(argv))
         command = f"ekm {args.command}"
+        if not getattr(args, "holds_signals", lambda _: False)(args):
+            interrupts.release()  # a signal so far raises now; a batch with a results file releases them itself
         args.func(args)
         interrupts.check()  # a signal lost inside a C callback still stops the command
     except InputError as exc:

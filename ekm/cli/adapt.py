@@ -3,7 +3,7 @@ scratch on others, tested as in ch. 6.1 against training steps (docs/design.md Â
 
 from __future__ import annotations
 
-from ekm.cli.args import command, nonneg_int, output_path, positive_int, print_json, show_progress
+from ekm.cli.args import command, nonneg_int, plot_path, positive_int, print_json, show_progress
 
 
 def add_parser(sub) -> None:
@@ -30,7 +30,7 @@ def add_parser(sub) -> None:
     p.add_argument("--seed", type=nonneg_int, default=1000, help="training seed (default 1000: never tuned on)")
     p.add_argument("--test-seed", type=nonneg_int, default=1000, help="seed of the test targets and noise (default 1000)")
     p.add_argument("--rate", metavar="RULE", help="the fine-tuning rule, as ekm train --rate spells it")
-    p.add_argument("--plot", metavar="PNG", help="E, T(5), D(25) against steps, a row per robot")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF", help="E, T(5), D(25) against steps, a row per robot")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -39,7 +39,7 @@ def run(args) -> None:
     """Run the adaptation experiment (:func:`ekm.adapt`); print its table or JSON, draw its curves."""
     from ekm.api.adapting import adapt
 
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
     table = adapt(args.robots, maps=args.map, steps=args.steps, every=args.every, scratch_steps=args.scratch_steps,
                   scratch_every=args.scratch_every, targets=args.targets, seed=args.seed, test_seed=args.test_seed,
                   rate=args.rate, progress=show_progress(args))

@@ -8,11 +8,12 @@ import json
 import math
 import sys
 
-from ekm.api.checks import invalid_choice, output_path, sign_problem
+from ekm.api.checks import invalid_choice, output_path, plot_path, sign_problem
 from ekm.provenance import provenance
 
 __all__ = ["add_batch_options", "command", "finite_float", "in_this_process", "nonneg_float", "nonneg_int", "one_of",
-           "output_path", "positive_float", "positive_int", "print_columns", "print_json", "provenance",
+           "output_path", "plot_path", "positive_float", "positive_int", "print_columns", "print_json", "print_written",
+           "provenance",
            "show_progress", "xy_point"]
 
 
@@ -102,6 +103,14 @@ def print_columns(lines) -> None:
         print("  ".join(str(v).ljust(w) for v, w in zip(line, widths)).rstrip())
 
 
+def print_written(args, plot) -> None:
+    """The last lines of a batch command (``ekm compare``, ``ekm tournament``): where its results file
+    (``--out`` or ``--resume``) and its ``plot`` are."""
+    for path, what in ((args.out or args.resume, "results"), (plot, "plot")):
+        if path:
+            print(f"{what} written to {path}")
+
+
 def add_batch_options(p, unit: str, resume: str) -> None:
     """The options of a command whose ``unit`` s (runs, games) go through the batch runner (:mod:`evaluation.batch`):
     where they go (``--workers``, ``--scheduler``) and their results file (``--out``; ``--resume``, helped by
@@ -116,6 +125,8 @@ def add_batch_options(p, unit: str, resume: str) -> None:
     p.add_argument("--out", metavar="RESULTS.jsonl",
                    help=f"append every finished {unit} to this results file as it arrives (JSON Lines; must not exist)")
     p.add_argument("--resume", metavar="RESULTS.jsonl", help=resume)
+    # a signal before the results file exists waits for it, so that the line names it (ekm.interrupts)
+    p.set_defaults(holds_signals=lambda args: bool(args.out or args.resume))
 
 
 def in_this_process(args) -> None:

@@ -3,8 +3,8 @@
 
 from __future__ import annotations
 
-from ekm.cli.args import (add_batch_options, command, in_this_process, nonneg_int, output_path, positive_int,
-                          print_columns, print_json, show_progress)
+from ekm.cli.args import (add_batch_options, command, in_this_process, nonneg_int, plot_path, positive_int,
+                          print_columns, print_json, print_written, show_progress)
 from ekm.cli.run import add_robot_options, add_scenario_options
 
 
@@ -42,7 +42,7 @@ def add_parser(sub) -> None:
     p.add_argument("--motion", action="store_true",
                    help="also print each architecture's motion over all its runs (smoothness, hesitation, efficiency, "
                         "precision; mean ± 95 %% interval) with its response encoding")
-    p.add_argument("--plot", metavar="PNG", help="success rates with their intervals, and one path per cell")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF", help="success rates with their intervals, and one path per cell")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -53,7 +53,7 @@ def run(args) -> None:
     from ekm.api.comparing import compare, load_comparison
     from ekm.errors import InputError
 
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
     if args.from_results:
         if args.out or args.resume:
             raise InputError("ekm compare: --from makes no runs; drop --out and --resume")
@@ -85,8 +85,7 @@ def run(args) -> None:
     if args.motion:
         print()
         print_motion(table.overall)
-    if plot:
-        print(f"plot written to {plot}")
+    print_written(args, plot)  # --from takes neither --out nor --resume
 
 
 def print_robot(table) -> None:
@@ -109,9 +108,13 @@ def print_families(rows) -> None:
 
 
 def _success(r) -> tuple[str, str]:
-    """``("k/n", "lo-hi")`` of a summary row: runs that reached the goal and the 95 % interval."""
+    """``("k/n", "lo-hi")`` of a summary row: runs that reached the goal of the ``n`` that were made, and the 95 %
+    interval; ``("failed", "")`` when no run could be made (the reasons: ``--json``)."""
+    if r["success_rate"] is None:
+        return "failed", ""
     lo, hi = r["success_ci95"]
-    return f"{round(r['success_rate'] * r['trials'])}/{r['trials']}", f"{lo:.2f}-{hi:.2f}"
+    made = r["trials"] - r["failed"]
+    return f"{round(r['success_rate'] * made)}/{made}", f"{lo:.2f}-{hi:.2f}"
 
 
 def _mean(value, digits: int) -> str:

@@ -3,7 +3,7 @@ paths for them)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import command, nonneg_int, output_path, positive_int, print_json
+from ekm.cli.args import command, nonneg_int, plot_path, positive_int, print_json
 from ekm.cli.summary import print_summary
 
 
@@ -15,8 +15,8 @@ def add_parser(sub) -> None:
     p.add_argument("--seed", type=nonneg_int, default=0, help="seed of the test targets and noise (default 0)")
     p.add_argument("--robot", metavar="NAME|FILE",
                    help="the robot the test drives: a named robot or a robot file (default khepera; ekm robots)")
-    p.add_argument("--plot", metavar="PNG", help="draw Fig. 6.1/6.2 with all maps on the same axes")
-    p.add_argument("--paths", metavar="PNG", help="draw each map's paths through the first 10 test targets")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF", help="draw Fig. 6.1/6.2 with all maps on the same axes")
+    p.add_argument("--paths", metavar="PNG|SVG|PDF", help="draw each map's paths through the first 10 test targets")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -25,8 +25,8 @@ def run(args) -> None:
     """Run the ch. 6.1 test on saved maps (:func:`ekm.evaluate`; and draw Fig. 6.1/6.2 for them)."""
     from ekm.api.evaluation import Evaluation, evaluate
 
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
-    paths = output_path(args.paths, "--paths", ".png") if args.paths else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
+    paths = plot_path(args.paths, "--paths") if args.paths else None
     result = evaluate(args.maps if len(args.maps) > 1 else args.maps[0], targets=args.targets, seed=args.seed,
                       robot=args.robot)
     every = result if isinstance(result, Evaluation) else Evaluation((result,))

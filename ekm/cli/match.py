@@ -3,7 +3,7 @@ the rule (:func:`ekm.match`)."""
 
 from __future__ import annotations
 
-from ekm.cli.args import command, nonneg_int, one_of, output_path, positive_float, print_json, show_progress
+from ekm.cli.args import command, nonneg_int, one_of, output_path, plot_path, positive_float, print_json, show_progress
 
 
 def add_field_option(p) -> None:
@@ -36,7 +36,8 @@ def add_parser(sub) -> None:
     add_field_option(p)
     p.add_argument("--minutes", type=positive_float, default=10.0, help="game time in minutes (default 10)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="the robots' motor and sensor noise (default 0)")
-    p.add_argument("--plot", metavar="PNG", help="draw the whole game: both robots' paths, the ball's, the goals")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF",
+                   help="draw the whole game: both robots' paths, the ball's, the goals")
     p.add_argument("--gif", metavar="GIF", help="play the game as an animated GIF")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
@@ -47,7 +48,7 @@ def run(args) -> None:
     from ekm.api.soccer import RULE_TEXT, match
     from evaluation.pinning import pin_to_one_cpu
 
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
     pin_to_one_cpu()  # one game, one thread of work: one CPU for it (evaluation.pinning)
     result = match(args.first, args.second, field=args.field, minutes=args.minutes, seed=args.seed, rule=args.rule,
@@ -55,7 +56,7 @@ def run(args) -> None:
     if plot:
         result.save_plot(plot)
     if gif:
-        result.save_animation(gif)
+        result.save_animation(gif, progress=show_progress(args))
     if args.json:
         print_json(result.to_dict())
         return

@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
                    help="cell decomposition (default slippery)")
     p.add_argument("--at", type=nonneg_float, default=0.0, metavar="SECONDS",
                    help="plan on the map known at this time (after the known events so far; default 0)")
-    p.add_argument("--plot", metavar="PNG", help="draw cells, graph, route and checkpoints to PNG")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF", help="draw cells, graph, route and checkpoints")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -30,8 +30,11 @@ def add_parser(sub) -> None:
 def run(args) -> None:
     """Plan checkpoints through a world with slippery cells or a baseline decomposition (thesis ch. 3;
     :func:`ekm.plan`)."""
+    from ekm.api.checks import plot_path
     from ekm.api.planning import plan
 
+    if args.plot:
+        plot_path(args.plot)  # checked before the work
     result = plan(args.world, args.start, args.goal, cell=args.cell, method=args.method, at=args.at,
                   checkpoints=args.checkpoints)
     p, world, seconds = result.plan, result.world, result.seconds

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from ekm.api.driving import SENSORS
-from ekm.cli.args import command, nonneg_float, nonneg_int, one_of, output_path, positive_float, print_json, show_progress
+from ekm.cli.args import (command, nonneg_float, nonneg_int, one_of, output_path, plot_path, positive_float, print_json,
+                          show_progress)
 
 ARCHITECTURE_HELP = ("ARCH[:k=v,...]: fusion, fields, samba, schema, or one an installed package adds, e.g. fields, "
                      "fields:form=thesis, fusion:beta=0.6,sensors=long; without parameters each runs its best "
@@ -57,7 +58,7 @@ def add_parser(sub) -> None:
                         "with it")
     p.add_argument("--trial", type=nonneg_int, metavar="K", help="which trial of the map drives (default: seed %% trials)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="noise seed of the run (default 0)")
-    p.add_argument("--plot", metavar="PNG", help="draw the run to scale (Fig. 6.3-6.8)")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF", help="draw the run to scale (Fig. 6.3-6.8)")
     p.add_argument("--gif", metavar="GIF", help="animate the run")
     p.add_argument("--maps-at", type=nonneg_float, metavar="T",
                    help="with --plot and samba: draw the Goto, Avoid and MAV action maps of the tick nearest T s "
@@ -74,7 +75,7 @@ def run(args) -> None:
     from evaluation.pinning import pin_to_one_cpu
 
     pin_to_one_cpu()  # one run, one thread of work: one CPU for it (evaluation.pinning)
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
     gif = output_path(args.gif, "--gif", ".gif") if args.gif else None
     save_map = output_path(args.save_map, "--save-map", ".npz") if args.save_map else None
     if save_map and args.learn is None:
@@ -103,14 +104,14 @@ def run(args) -> None:
     elif plot:
         outcome.save_plot(plot)
     if gif:
-        outcome.save_animation(gif)
+        outcome.save_animation(gif, progress=show_progress(args))
     if save_map:
         outcome.save_map(save_map)
     if args.json:
         print_json(outcome.to_dict())
         return
     out = outcome.to_dict()
-    status = "REACHED the goal" if out["reached"] else ("TRAPPED" if out["trapped"] else "did not reach the goal")
+    status = outcome_status(out)
     drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
     print(f"{rec.world.name}: {spec} on {out['robot']} (seed {args.seed}{drives})")
     if out["map_robot"] is not None and out["map_robot"] != out["robot"]:
@@ -125,3 +126,14 @@ def run(args) -> None:
     for path in (plot, gif, save_map):
         if path:
             print(f"  written to {path}")
+
+
+def outcome_status(out: dict) -> str:
+    """How a run ended, in the words of docs/design.md §5: it *reaches* the goal when it stops there without a
+    collision; one that stopped there after a collision *arrived*, which is not reaching it."""
+    if out["reached"]:
+        return "REACHED the goal"
+    if out["arrived"]:
+        n = out["collisions"]
+        return f"ARRIVED after {n} collision{'' if n == 1 else 's'}, so did not reach the goal"
+    return "TRAPPED" if out["trapped"] else "did not reach the goal"

@@ -27,7 +27,8 @@ def add_parser(sub) -> None:
                    help="game k of every pairing is played with seed SEED + k (default 0)")
     add_batch_options(p, "game", "finish the tournament of this results file (same players and settings): its games "
                                  "are kept, the missing ones played and appended")
-    p.add_argument("--plot", metavar="PNG", help="each player's goal difference and win rate with their intervals")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF",
+                   help="each player's goal difference and win rate with their intervals")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -35,9 +36,9 @@ def add_parser(sub) -> None:
 def run(args) -> None:
     """Play the round robin (:func:`ekm.tournament`); print the cross table and the standings, or the JSON; draw."""
     from ekm.api.soccer import tournament
-    from ekm.cli.args import output_path
+    from ekm.cli.args import plot_path, print_written
 
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
     in_this_process(args)
     result = tournament(args.players, field=args.field, minutes=args.minutes, seeds=args.seeds, seed=args.seed,
                         rule=args.rule, workers=args.workers, scheduler=args.scheduler, out=args.out,
@@ -57,9 +58,7 @@ def run(args) -> None:
           f"{result.seed + result.seeds - 1}, {result.minutes:g} min each, rule {result.rule}, field {result.field}) "
           f"in {result.seconds:.0f} s on {result.workers}"
           + (f"; {failed} failed (the reasons: --json, or the results file)" if failed else ""))
-    for path, what in ((args.out or args.resume, "results"), (plot, "plot")):
-        if path:
-            print(f"{what} written to {path}")
+    print_written(args, plot)
 
 
 def print_cross_table(result) -> None:

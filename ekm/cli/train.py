@@ -3,7 +3,7 @@ ch. 6.1 along the way (docs/design.md §3, §6); checkpoints at every test, ``--
 
 from __future__ import annotations
 
-from ekm.cli.args import command, nonneg_int, one_of, output_path, positive_int, print_json, show_progress
+from ekm.cli.args import command, nonneg_int, one_of, plot_path, positive_int, print_json, show_progress
 from ekm.cli.summary import print_summary
 from ekm.config import CHARTS
 from ekm.errors import InputError
@@ -53,7 +53,7 @@ def add_parser(sub) -> None:
                         "removed when the maps are saved)")
     p.add_argument("--resume", metavar="CKPT.npz",
                    help="continue an interrupted run from its checkpoint, with the settings it was started with")
-    p.add_argument("--plot", metavar="PNG", help="draw Fig. 6.1/6.2 for the trained maps")
+    p.add_argument("--plot", metavar="PNG|SVG|PDF", help="draw Fig. 6.1/6.2 for the trained maps")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=run)
 
@@ -64,7 +64,7 @@ def run(args) -> None:
     from ekm.api.training import resume, train
 
     given = {name: getattr(args, name) for name in SETTINGS if getattr(args, name) is not None}
-    plot = output_path(args.plot, "--plot", ".png") if args.plot else None
+    plot = plot_path(args.plot, "--plot") if args.plot else None
     if args.resume:
         extra = [f"--{name.replace('_', '-')}" for name in given if name != "out"]
         if extra:

@@ -15,8 +15,9 @@ def add_parser(sub) -> None:
                 more="A generated world's family is one of ekm families (--generate FAMILY --seed N [--difficulty D] "
                      "--out FILE);\nthe world's name, FAMILY:SEED or FAMILY:SEED:D, is also a --world everywhere.")
     p.add_argument("--json", action="store_true", help="print JSON")
-    p.add_argument("--plot", metavar="DIR|PNG",
-                   help="draw each world to DIR/NAME.png, or one world to PNG (with --generate: the generated world)")
+    p.add_argument("--plot", metavar="DIR|PLOT",
+                   help="draw each world to DIR/NAME.png, or one world to PLOT (.png, .svg or .pdf; with --generate: "
+                        "the generated world)")
     p.add_argument("--check", metavar="FILE", nargs="+", help="validate world files (exit 2 on the first bad one)")
     p.add_argument("--show", metavar="WORLD",
                    help="print a world's file (a named world, a file or FAMILY:SEED): a template for your own")
@@ -75,7 +76,7 @@ def run(args) -> None:
 def generate(args) -> None:
     """``--generate FAMILY --seed N [--difficulty D] --out FILE [--plot PNG] [--json]``: the world file,
     written atomically, and its counts and difficulty measures."""
-    from ekm.api.checks import choice, output_path
+    from ekm.api.checks import choice, output_path, plot_path
     from ekm.api.worlds import generate as make
     from ekm.errors import InputError
     from ekm.provenance import provenance
@@ -89,7 +90,7 @@ def generate(args) -> None:
         if getattr(args, option) is None:
             raise InputError(f"ekm worlds: argument --generate: needs --{option}")
     out = output_path(args.out, "--out", ".json")
-    png = output_path(args.plot, "--plot", ".png") if args.plot else None
+    png = plot_path(args.plot, "--plot") if args.plot else None
     world = make(args.generate, args.seed, args.difficulty)
     try:
         save_world(world, out)

@@ -153,7 +153,10 @@ def parse_learning(text) -> LearnParams:
 
     def make(name: str, values: dict) -> LearnParams:
         if name not in RULES:
-            raise InputError(f"learning rule {name!r}: unknown (choose from {', '.join(RULES)}, or 0 for rate 0)")
+            from robots.spelling import did_you_mean
+
+            raise InputError(f"learning rule {name!r}: unknown{did_you_mean(name, RULES)} (choose from "
+                             f"{', '.join(RULES)}, or 0 for rate 0)")
         own_keys = [f.name for f in fields_of(LearnParams) if f.name != "rule"]
         known = [f.name for f in fields_of(Adaptation) if f.name != "rule"] + own_keys
         for key in values:

@@ -93,7 +93,10 @@ def generate(family: str, seed: int, difficulty: float | None = None):
     import numbers
 
     if family not in FAMILIES:
-        raise InputError(f"unknown world family {family!r} (families: {', '.join(FAMILIES)})")
+        from robots.spelling import did_you_mean
+
+        raise InputError(f"unknown world family {family!r}{did_you_mean(family, FAMILIES)} (families: "
+                         f"{', '.join(FAMILIES)})")
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
         raise InputError(f"{family}: the seed must be a whole number >= 0, got {seed!r}")
     if difficulty is not None and (isinstance(difficulty, bool) or not isinstance(difficulty, numbers.Real)

@@ -258,3 +258,20 @@ def test_a_map_file_that_is_a_zip_of_something_else_is_refused(tmp_path):
         z.writestr("readme.txt", "hello")
     with pytest.raises(InputError, match="not an ekm map file|cannot read"):
         load_maps(path)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"ekm": 0}, "metadata 'ekm' must be an object, got 0"),  # an AttributeError's traceback before issue 34
+    ({"ekm": {"c_max": True}}, "metadata 'ekm.c_max' must be float, got true"),
+    ({"ekm": {"neurons": "4"}}, "metadata 'ekm.neurons' must be int, got \"4\""),
+    ({"robot": {"name": 7}}, "metadata 'robot' must be an object with a name"),
+    ({"seed": "x"}, "metadata 'seed' must be int, got \"x\""),
+])
+def test_metadata_the_package_reads_is_refused_in_one_line_when_of_the_wrong_type(good, tmp_path, change, message):
+    meta = meta_of(good)
+    for key, value in change.items():
+        meta[key] = {**meta[key], **value} if isinstance(value, dict) and key == "ekm" else value
+    bad = rewrite(good, tmp_path, metadata=np.array(json.dumps(meta)))
+    with pytest.raises(InputError) as info:
+        load_maps(bad)
+    assert str(info.value) == f"{bad}: {message}" or str(info.value).startswith(f"{bad}: {message}")

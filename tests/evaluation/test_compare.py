@@ -42,6 +42,54 @@ def test_summary_rows_carry_design_keys_means_of_successes_and_intervals():
     assert row["runs_by_trial"] == "RRRTL" and row["contact_s"] == 0.25 and row["failed"] == 0
 
 
+def test_runs_that_failed_are_no_runs_that_missed_and_a_row_of_failed_runs_has_no_rate():
+    ok = {"label": "a", "given": "w", "world": "w", "reached": True, "trapped": False, "arrived": True, "ended": "x",
+          "time_s": 10.0, "path_m": 1.0, "collisions": 0, "contact_s": 0.0}
+    job = Job(world="w", architecture="a", label="a", trial=0, seed=0, config=QUICK)
+    dead = [failed_run(Job(**{**job.__dict__, "trial": i, "seed": i}), "its worker died 4 times") for i in range(2)]
+    records = [{**ok, "trial": 2}, {**ok, "trial": 3, "reached": False, "arrived": False, "ended": "time limit"}, *dead]
+    (row,) = summarize(records, ["w"], ["a"])
+    # 1 of the 2 runs made reached the goal: 0.5, Wilson (1, 2); the 2 failed runs are counted apart
+    assert (row["trials"], row["success_rate"], row["failed"], row["runs_by_trial"]) == (4, 0.5, 2, "FFRL")
+    assert row["success_ci95"] == pytest.approx(wilson(1, 2), abs=1e-4)
+    (row,) = summarize(dead, ["w"], ["a"])
+    assert (row["success_rate"], row["success_ci95"], row["failed"], row["runs_by_trial"]) == (None, None, 2, "FF")
+
+
+def test_a_script_without_the_main_guard_is_named_with_the_two_lines_to_add(tmp_path):
+    """The test behind issue 34's table of zeros: spawned workers import the script, which starts the comparison
+    again; here, the check that names that cause, at a statement outside and inside the guard."""
+    import subprocess
+    import sys
+
+    script = tmp_path / "script.py"
+    script.write_text("from evaluation.workers import unguarded_script\n"
+                      "print(unguarded_script())\n"
+                      "if __name__ == '__main__':\n"
+                      "    print(unguarded_script())\n")
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, check=True).stdout
+    assert out.splitlines() == [str(script), "None"]
+
+
+@pytest.mark.slow
+def test_a_comparison_whose_workers_all_die_at_start_stops_with_the_cause_not_a_table_of_zeros(tmp_path):
+    """Issue 34's script: ``ekm.compare`` with two workers at a script's top level. Each spawned worker runs the
+    script again and leaves; the parent stops with one line naming the script and the guard — no table, no
+    worker's traceback."""
+    import subprocess
+    import sys
+
+    script = tmp_path / "noguard.py"
+    script.write_text("import ekm\n"
+                      "t = ekm.compare(['open-arena'], 'fields,samba', trials=1, workers=2)\n"
+                      "print([r['success_rate'] for r in t.rows])\n")
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, cwd=tmp_path)
+    assert done.returncode == 1 and done.stdout == "" and done.stderr.count("Traceback") == 1, done.stderr
+    last = done.stderr.splitlines()[-1]
+    assert last.startswith(f"ekm.errors.InputError: {script}: every worker process died as it started"), last
+    assert "'if __name__ == \"__main__\":' and '    main()'" in last
+
+
 def test_an_architecture_s_overall_row_pools_its_runs_in_every_world():
     def run(label, world, trial, reached, change):
         return {"label": label, "given": world, "world": world, "trial": trial, "reached": reached, "trapped": False,

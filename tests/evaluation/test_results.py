@@ -14,7 +14,9 @@ SETTINGS = {"worlds": ["open-arena", "maze:1000"], "labels": ["fusion", "fields"
 
 
 def record(world, label, trial):
-    return {"given": world, "label": label, "trial": trial, "reached": trial == 0}
+    return {"given": world, "world": world, "label": label, "trial": trial, "reached": trial == 0, "trapped": False,
+            "arrived": trial == 0, "ended": "stopped at the goal" if trial == 0 else "time limit", "collisions": 0,
+            "contact_s": 0.0, "time_s": 30.5 if trial == 0 else None, "path_m": 1.25 if trial == 0 else None}
 
 
 def test_runs_are_lines_after_a_header_and_read_back_as_written(tmp_path):
@@ -80,3 +82,44 @@ def test_what_is_not_a_results_file_is_refused_in_one_line(tmp_path, text, messa
         read(path)
     with pytest.raises(InputError, match="no such results file"):
         read(tmp_path / "missing.jsonl")
+
+
+@pytest.mark.parametrize("change, error", [
+    ({"trial": "x"}, 'line 3: outcome.trial: must be a whole number, got "x"'),
+    ({"reached": 1}, "line 3: outcome.reached: must be true or false, got 1"),
+    ({"time_s": -2.0}, "line 3: outcome.time_s: must be >= 0, got -2.0"),
+    ({"label": ""}, 'line 3: outcome.label: must be a non-empty string, got ""'),
+    ({"failed": 7}, "line 3: outcome.failed: must be a non-empty string, got 7"),
+    ({"collisions": None}, "line 3: outcome.collisions: must be a whole number, got null"),
+])
+def test_a_record_read_back_is_checked_like_a_world_file_naming_its_line_and_key(tmp_path, change, error):
+    path = tmp_path / "r.jsonl"
+    with ResultsFile(path, SETTINGS) as f:
+        f.append({}, record("open-arena", "fusion", 0))
+        f.append({}, {**record("open-arena", "fields", 0), **change})
+    with pytest.raises(InputError) as e:
+        read(path)
+    assert str(e.value) == f"{path}: {error}"
+
+
+def test_a_record_without_a_key_the_table_reads_is_refused(tmp_path):
+    path = tmp_path / "r.jsonl"
+    with ResultsFile(path, SETTINGS) as f:
+        f.append({}, {k: v for k, v in record("open-arena", "fusion", 0).items() if k != "ended"})
+    with pytest.raises(InputError, match=r"r.jsonl: line 2: outcome.ended: missing$"):
+        read(path)
+
+
+def test_resuming_a_tournaments_file_as_a_comparison_says_whose_file_it_is_and_the_mirror(tmp_path):
+    cup, cmp = tmp_path / "cup.jsonl", tmp_path / "cmp.jsonl"
+    cup_settings = {"tournament": ["schema", "ekm"], "labels": ["schema", "ekm"], "seeds": 2}
+    ResultsFile(cup, cup_settings).close()
+    ResultsFile(cmp, SETTINGS).close()
+    with pytest.raises(InputError) as e:
+        ResultsFile(cup, SETTINGS, resume=True)
+    assert str(e.value) == (f"--resume {cup}: a tournament's results file, not a comparison's (ekm compare --out "
+                            f"writes those)")
+    with pytest.raises(InputError) as e:
+        ResultsFile(cmp, cup_settings, resume=True)
+    assert str(e.value) == (f"--resume {cmp}: a comparison's results file, not a tournament's (ekm tournament --out "
+                            f"writes those)")

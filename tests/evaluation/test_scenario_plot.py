@@ -144,3 +144,40 @@ def test_a_failed_write_leaves_no_partial_gif(short_run, tmp_path, monkeypatch):
     with pytest.raises(InputError, match="No space left"):
         save_animation(short_run, tmp_path / "run.gif", max_frames=3)
     assert not any(tmp_path.iterdir())
+
+
+def test_a_gif_shows_its_progress_frame_by_frame_on_stderr_when_asked(tmp_path, capsys):
+    """Issue 34: a game's GIF took a minute with nothing shown; the one GIF writer counts its frames."""
+    from matplotlib.figure import Figure
+
+    from robots.plot import save_gif
+
+    fig = Figure(figsize=(1, 1))
+    ax = fig.add_subplot()
+    seen = []
+    save_gif(fig, lambda k: seen.append(k) or [], [0, 1, 2], tmp_path / "quiet.gif", fps=5, dpi=20)
+    assert capsys.readouterr().err == "" and (tmp_path / "quiet.gif").read_bytes()[:6] == b"GIF89a"
+    save_gif(fig, lambda k: ax.set_title(str(k)), [0, 1, 2], tmp_path / "shown.gif", fps=5, dpi=20, progress=True)
+    err = capsys.readouterr().err
+    assert "writing shown.gif" in err and "3/3" in err and seen[-3:] == [0, 1, 2]
+
+
+def test_a_comparison_thumbnail_marks_each_collision_where_it_began_not_at_the_goal():
+    """A run that collided at a door and then stopped at the goal: a red cross at the door, a red ring at the
+    goal (arrived, not reached)."""
+    from matplotlib.figure import Figure
+
+    from evaluation.compare_plot import _draw_cell, end_marker
+    from robots.worldfile import load_world
+
+    world = load_world("open-arena")
+    gx, gy = world.goal_at(0.0)
+    record = {"reached": False, "trapped": False, "arrived": True, "path": [[0.2, 0.2], [0.5, 0.4], [gx, gy]],
+              "collided_at": [[0.5, 0.4]]}
+    ax = Figure().add_subplot()
+    _draw_cell(ax, world, record)
+    crosses = [tuple(line.get_xydata()[0]) for line in ax.lines if line.get_marker() == "x"]
+    rings = [tuple(line.get_xydata()[0]) for line in ax.lines if line.get_marker() == "o"]
+    assert crosses == [(0.5, 0.4)] and rings == [(gx, gy)]
+    assert end_marker({**record, "arrived": False}) == ("x", "red")
+    assert end_marker({**record, "reached": True}) == ("o", "tab:green")

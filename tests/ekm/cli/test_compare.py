@@ -80,8 +80,9 @@ def test_motion_pools_each_architecture_s_runs_over_the_worlds(cli):
 
 def test_results_files_are_refused_in_one_line(cli, tmp_path):
     results = tmp_path / "r.jsonl"
-    code, _, _ = cli("compare", "--worlds", "open-arena", "--architectures", "fusion", "--trials", "2",
-                     "--time-limit", "10", "--workers", "1", "--out", results)
+    code, out, _ = cli("compare", "--worlds", "open-arena", "--architectures", "fusion", "--trials", "2",
+                       "--time-limit", "10", "--workers", "1", "--out", results)
+    assert code == 0 and out.splitlines()[-1] == f"results written to {results}"  # as the tournament says it
     lines = results.read_text().splitlines(keepends=True)
     results.write_text("".join(lines[:2]))
     for argv, message in [

@@ -29,18 +29,38 @@ COMMANDS = {
 }
 
 
+def catches_signals(pid: int) -> bool:
+    """Whether process ``pid`` has the package's handlers yet (Linux's /proc; elsewhere, True at once): it catches
+    SIGTERM, which the interpreter leaves alone (its own SIGINT handler is there before ``site`` is imported)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return True
+    caught = next((line.split()[1] for line in status.splitlines() if line.startswith("SigCgt:")), None)
+    return caught is None or bool(int(caught, 16) & (1 << (signal.SIGTERM - 1)))
+
+
 def stopped(cases, tmp_path, sig=signal.SIGINT, group=False):
     """Start every ``(name, argv, moment)`` of ``cases``; send ``sig`` to each at its moment (to its whole
-    process group with ``group``, as a terminal's Ctrl-C does); ``{(name, moment): (status, stderr, dir)}``."""
+    process group with ``group``, as a terminal's Ctrl-C does); ``{(name, moment): (status, stderr, dir)}``.
+
+    A moment counts from when the command handles signals — its first statement (:func:`ekm.__main__.console`)
+    — not from the process's start: before it, the interpreter is still starting (its ``site`` imports), which on
+    a loaded machine takes more than the first moment, and a signal there is Python's own, not the package's."""
     env = {**os.environ, "MPLBACKEND": "Agg"}
     running = []
-    t0 = time.monotonic()
     for name, argv, moment in cases:
         d = tmp_path / f"{name}-{moment}"
         d.mkdir()
         p = subprocess.Popen(EKM + argv, cwd=d, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                              text=True, start_new_session=group)
-        running.append((name, moment, d, p, t0 + moment))
+        running.append([name, moment, d, p, None])
+    while any(r[4] is None for r in running):  # each one's clock starts when it handles signals
+        for r in running:
+            if r[4] is None and catches_signals(r[3].pid):
+                r[4] = time.monotonic() + r[1]
+            assert r[3].poll() is None, "the command ended before it handled signals"
+        time.sleep(0.01)
     for _, _, _, p, at in sorted(running, key=lambda r: r[4]):
         time.sleep(max(0.0, at - time.monotonic()))
         assert p.poll() is None, "the command ended before its signal: make it longer"
@@ -70,8 +90,30 @@ def test_ctrl_c_at_any_moment_stops_train_and_compare_with_one_line_and_130(tmp_
     for (name, moment), (status, err, d) in stopped(cases, tmp_path).items():
         assert status == 130 and err.count("\n") == 1 and err.startswith("interrupted: "), (name, moment, err)
         assert_nothing_partial(d)
-        if name == "compare" and (d / "r.jsonl").exists():
-            assert "--resume r.jsonl" in err
+        if name == "compare":  # --out was given: at every moment the line names the file and how to resume
+            assert (d / "r.jsonl").exists() and "runs are in r.jsonl" in err and "--resume r.jsonl" in err, err
+
+
+def test_a_signal_before_the_results_file_exists_still_ends_with_the_file_and_how_to_resume(tmp_path):
+    """Issue 34, item 2, without timing: the signal is sent before anything of ekm compare has run (the moment
+    that said "no results file was written"). The console script holds it until the results file exists, so the
+    line is the one of every other moment, and the file is there to resume."""
+    code = ("import os, signal, sys\n"
+            "from ekm import interrupts\n"
+            "interrupts.install(hold=True)\n"
+            "os.kill(os.getpid(), signal.SIGINT)\n"
+            "from ekm.cli import main\n"
+            "status = main(sys.argv[1:])\n"
+            "sys.stdout.flush(); sys.stderr.flush(); os._exit(status)\n")
+    argv = ["compare", "--worlds", "open-arena", "--architectures", "fusion,samba", "--trials", "3", "--workers", "2",
+            "--out", "r.jsonl"]
+    done = subprocess.run([sys.executable, "-c", code, *argv], cwd=tmp_path, capture_output=True, text=True,
+                          env={**os.environ, "MPLBACKEND": "Agg"}, timeout=300)
+    assert done.returncode == 130, done.stderr
+    assert done.stderr == ("interrupted: comparison stopped; 0 of 6 runs are in r.jsonl; run the same command with "
+                           "--resume r.jsonl to finish it\n")
+    (header,) = (tmp_path / "r.jsonl").read_text().splitlines()
+    assert json.loads(header)["settings"]["worlds"] == ["open-arena"]
 
 
 def test_sigterm_stops_with_143_and_a_terminal_ctrl_c_reaches_no_worker(tmp_path):

@@ -79,7 +79,8 @@ def test_plot_is_a_png_written_atomically(capsys, tmp_path):
     (["--world", "no-such-world"], "no-such-world: no such world file or named world"),
     (["--world", "three-rooms", "--method", "voronoi"], "argument --method: invalid choice"),
     (["--world", "three-rooms", "--at", "-1"], "argument --at: must be >= 0, got -1"),
-    (["--world", "three-rooms", "--plot", "/no/such/dir/plan.png"], "/no/such/dir/plan.png: cannot write the plot"),
+    (["--world", "three-rooms", "--plot", "/no/such/dir/plan.png"],
+     "--plot /no/such/dir/plan.png: no such directory /no/such/dir (make it first)"),
     ([], "the following arguments are required: --world"),
 ])
 def test_bad_input_is_one_line_and_exit_status_2(capsys, argv, message):
@@ -98,3 +99,20 @@ def test_no_route_is_one_line(capsys, tmp_path):
     assert status == 2 and out == ""
     assert err == "error: sealed: no route from start (0.2, 0.25) to goal (0.8, 0.25): they lie in parts of the " \
                   "free space that do not connect at this cell size (tried cells down to 0.005 m)\n"
+
+
+@pytest.mark.parametrize("name, head", [("plan.svg", b"<?xml"), ("plan.pdf", b"%PDF-"), ("plan.png", b"\x89PNG")])
+def test_a_plot_is_written_in_the_format_of_its_suffix(capsys, tmp_path, name, head):
+    status, _, err = run(capsys, "--world", "open-arena", "--plot", str(tmp_path / name))
+    assert status == 0 and err == "" and (tmp_path / name).read_bytes()[:len(head)] == head
+
+
+@pytest.mark.parametrize("plot, line", [
+    ("run.jpg", "--plot run.jpg: expected a file name ending in .png, .svg or .pdf"),
+    ("nowhere/deeper/p.svg", "--plot nowhere/deeper/p.svg: no such directory nowhere/deeper (make it first)"),
+])
+def test_a_plot_of_another_format_or_in_a_missing_directory_is_refused_and_nothing_made(capsys, tmp_path,
+                                                                                          monkeypatch, plot, line):
+    monkeypatch.chdir(tmp_path)
+    status, out, err = run(capsys, "--world", "open-arena", "--plot", plot)
+    assert (status, out, err) == (2, "", f"error: {line}\n") and list(tmp_path.iterdir()) == []

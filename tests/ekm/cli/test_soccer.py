@@ -43,6 +43,7 @@ def test_the_match_json_has_every_key_and_the_rule_can_be_sahota(cli):
 
 def test_a_match_draws_its_plot_and_its_gif(cli, tmp_path):
     plot, gif = tmp_path / "out" / "m.png", tmp_path / "m.gif"
+    plot.parent.mkdir()  # an output's directory must exist (issue 34: --out never makes directories)
     code, out, _ = cli("match", "ekm", "schema", "--minutes", "0.1", "--plot", plot, "--gif", gif)
     assert code == 0 and f"written to {plot}" in out and f"written to {gif}" in out
     assert plot.read_bytes()[:4] == b"\x89PNG" and gif.read_bytes()[:3] == b"GIF"
@@ -157,8 +158,9 @@ def no_games(monkeypatch):
     (["match", "schema", "ekm", "--seed", "-1"], "argument --seed: must be >= 0, got -1"),
     (["match", "schema", "ekm", "--rule", "offside"], "argument --rule: invalid choice: 'offside'"),
     (["match", "schema", "ekm", "--field", "nowhere.json"], "nowhere.json: no such field file or named field"),
-    (["match", "schema", "ekm", "--plot", "m.jpg"], "--plot m.jpg: expected a file name ending in .png"),
-    (["match", "schema", "ekm", "--plot", "/proc/no/m.png"], "--plot /proc/no/m.png: cannot create its directory"),
+    (["match", "schema", "ekm", "--plot", "m.jpg"], "--plot m.jpg: expected a file name ending in .png, .svg or .pdf"),
+    (["match", "schema", "ekm", "--plot", "/proc/no/m.png"],
+     "--plot /proc/no/m.png: no such directory /proc/no (make it first)"),
     (["match", "schema", "ekm", "--gif", "m.png"], "--gif m.png: expected a file name ending in .gif"),
     (["tournament", "schema,striker"], "player 'striker': unknown"),
     (["tournament", "schema,,ekm"], "player 'schema,,ekm': empty item between commas"),
@@ -168,7 +170,7 @@ def no_games(monkeypatch):
     (["tournament", "schema,ekm", "--seeds", "0"], "argument --seeds: must be > 0, got 0"),
     (["tournament", "schema,ekm", "--minutes", "-1"], "argument --minutes: must be > 0, got -1"),
     (["tournament", "schema,ekm", "--workers", "0"], "argument --workers: must be > 0, got 0"),
-    (["tournament", "schema,ekm", "--plot", "cup.svg"], "--plot cup.svg: expected a file name ending in .png"),
+    (["tournament", "schema,ekm", "--plot", "cup.jpg"], "--plot cup.jpg: expected a file name ending in .png, .svg"),
     (["players", "striker"], "player 'striker': unknown (choose from deliberation, samba, ekm, schema)"),
     (["match", "schema", "ekm", "--robot", "tank"], "tank: no such robot file or named robot"),
     (["tournament", "schema,ekm,samba", "--robot", "khepera", "--robot", "e-puck"],

@@ -109,7 +109,7 @@ def test_one_world_plots_to_a_png_and_several_are_refused_one(tmp_path, capsys):
     status, out, _ = run(capsys, "--check", path, "--plot", str(tmp_path / "lab.png"))
     assert status == 0 and (tmp_path / "lab.png").read_bytes()[:4] == b"\x89PNG"
     status, _, err = run(capsys, "--plot", str(tmp_path / "all.png"))
-    assert status == 2 and "a PNG holds one world, and there are 8; give a directory" in err
+    assert status == 2 and "a plot file holds one world, and there are 8; give a directory" in err
     assert not (tmp_path / "all.png").exists()
 
 

@@ -17,7 +17,8 @@ def test_architecture_specs_parse_parameters_and_spell_them_all():
 
 
 @pytest.mark.parametrize("text, message", [
-    ("fuson", "architecture 'fuson': unknown (choose from fusion, fields"),
+    ("fuson", "architecture 'fuson': unknown; did you mean 'fusion'? (choose from fusion, fields"),
+    ("xyz", "architecture 'xyz': unknown (choose from fusion, fields"),
     ("fusion:foo=1", "architecture fusion: unknown parameter 'foo' (known: sensors, beta,"),
     ("fusion:beta=x", "architecture fusion: beta: must be a number, got 'x'"),
     ("fusion:beta=2", "architecture fusion: beta must be in (0, 1], got 2.0"),
