@@ -180,7 +180,6 @@ def tournament_jobs(specs, seeds, minutes: float, rule: str = "centre", field_pa
     jobs = []
     for i, a in enumerate(specs):
         for j in range(i, len(specs)):
-            b = specs[j]
             for s in seeds:
                 swap = i != j and s % 2 == 1
                 one, two = (j, i) if swap else (i, j)
