@@ -238,7 +238,9 @@ def by_family(records: list[dict], labels) -> list[dict]:
 
     generated = [r for r in records if r.get("family")]
     rows = []
-    for family in [f for f in FAMILIES if any(r["family"] == f for r in generated)] + (["all"] if generated else []):
+    seen = list(dict.fromkeys(r["family"] for r in generated))  # combined families (A+B) after the registered ones
+    order = [f for f in FAMILIES if f in seen] + [f for f in seen if f not in FAMILIES]
+    for family in order + (["all"] if generated else []):
         for label in labels:
             rs = [r for r in generated if r["label"] == label and family in ("all", r["family"])]
             rows.append({"family": family, "architecture": label, "worlds": len({r["given"] for r in rs}),

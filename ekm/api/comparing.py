@@ -95,14 +95,14 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
     """The generated worlds of ``suite`` — ``"FAMILY:COUNT[,FAMILY:COUNT...]"`` or a list of such items — as
     spellings ``FAMILY:SEED`` with seeds ``first_seed … first_seed + COUNT − 1`` for each family (seeds from
     1000 on are the test seeds: no parameter of the package was chosen on them)."""
-    from robots.generator import FAMILIES
+    from robots.generator import FAMILIES, family_of
 
     items = [t.strip() for t in suite.split(",")] if isinstance(suite, str) else [str(t) for t in suite]
     first_seed = whole(first_seed, "--world-seed", _PROG, strict=False)
     names = []
     for item in items:
         family, sep, count = item.partition(":")
-        if family not in FAMILIES:
+        if family_of(family) is None:
             raise InputError(f"--suite {item!r}: unknown family {family!r} (families: {', '.join(FAMILIES)})")
         try:
             n = int(count) if sep else -1
