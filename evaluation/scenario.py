@@ -61,7 +61,7 @@ class ScenarioConfig:
     checkpoint_tolerance: float = 0.005  # m: a checkpoint (and the goal) is reached within 5 mm (ch. 6.2.1)
     settle_s: float = 1.024  # s within the goal's tolerance after which the robot counts as stopped there
     capture_radius: float | None = None  # m: a moving goal is caught within this; None = the body radius
-    time_limit: float = 120.0  # s of simulated time
+    time_limit: float | None = None  # s of simulated time; None: follows the route (:func:`time_limit_for`)
     trap_after: float = 20.0  # s without progress (closer, or new ground) before the monitor says trapped
     trap_progress: float = 0.01  # m: coming this much closer to the checkpoint than ever before is progress
     trap_ground: float = 0.05  # m: side of the squares of ground; entering one never visited is progress
@@ -82,7 +82,10 @@ class ScenarioConfig:
     def __post_init__(self):
         if self.checkpoints not in RULES:
             raise InputError(f"scenario: checkpoints must be one of {', '.join(RULES)}, got {self.checkpoints!r}")
-        for name in ("checkpoint_tolerance", "settle_s", "time_limit", "trap_after", "trap_progress", "trap_ground",
+        if self.time_limit is not None and not (isinstance(self.time_limit, (int, float))
+                                                and math.isfinite(self.time_limit) and self.time_limit > 0):
+            raise InputError(f"scenario: time_limit must be a positive number or None, got {self.time_limit!r}")
+        for name in ("checkpoint_tolerance", "settle_s", "trap_after", "trap_progress", "trap_ground",
                      "sensed_radius", "cell", "start_reach", "pass_radius", "turn_s", "turn_tolerance"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
@@ -94,6 +97,24 @@ class ScenarioConfig:
                              f"{self.look_ahead}")
         if self.max_recoveries < 0:
             raise InputError(f"scenario: max_recoveries must be >= 0, got {self.max_recoveries}")
+
+
+#: s: the shortest default time limit (the package's fixed limit before issue 35: the named worlds' routes all take
+#: less than a tenth of it at top speed, so their runs are judged as before).
+TIME_FLOOR_S = 120.0
+#: The default time limit is this many times the planned route's time at the robot's top speed.
+TIME_PER_ROUTE = 10.0
+
+
+def time_limit_for(config: ScenarioConfig, route_m: float, top_speed: float) -> float:
+    """The run's time limit (s): ``config.time_limit`` when given, else
+    ``max(TIME_FLOOR_S, TIME_PER_ROUTE × route_m / top_speed)`` — ``route_m`` the planned route's length (m, start to
+    goal along the checkpoints), ``top_speed`` the robot's c* (m/s). A fixed limit starves long routes (a 6 m route
+    takes 38 s at 0.16 m/s and a robot at half speed twice that) and is slack on short ones; ten times the optimal
+    time is past the BARN score's 8x clip, so a run within the limit can still score."""
+    if config.time_limit is not None:
+        return float(config.time_limit)
+    return max(TIME_FLOOR_S, TIME_PER_ROUTE * route_m / top_speed)
 
 
 @dataclass(frozen=True)
@@ -128,6 +149,7 @@ class RunRecord:
     trapped: bool = False
     final_distance_m: float = math.nan
     ended: str = ""
+    time_limit_s: float = math.nan  # the run's time limit (:func:`time_limit_for`)
     period: float = 0.128
     poses: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))  # (S, 3): start, then every sub-step
     times: np.ndarray = field(default_factory=lambda: np.zeros(0))  # (S,) time of each pose
@@ -221,7 +243,12 @@ def episode(world: World, body, seed: int = 0, config: ScenarioConfig = Scenario
     A tick is the steps of the module docstring, each a function of the :class:`Course` so far that returns the
     next one; the physics, the trap monitor and the record being written are the :class:`Shell` they act on."""
     shell, course = start(world, body, seed, config, spec, on_tick)
-    for tick in range(math.ceil(config.time_limit / shell.period - 1e-9)):
+    from planner.checkpoints import path_length
+
+    limit = time_limit_for(config, path_length(np.asarray(world.start[:2]), course.plan.checkpoints),
+                           shell.robot.max_wheel_speed)
+    shell.rec.time_limit_s = limit
+    for tick in range(math.ceil(limit / shell.period - 1e-9)):
         t = shell.sim.t
         course = after_events(shell, course, t)
         if course.ended:

@@ -116,7 +116,7 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
 
 def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None, world_seed: int = 1000,
             trials: int = 10, seed: int = 0, maps=None, recover: bool = True,
-            time_limit: float = 120.0, checkpoints: str = "visible", cell: float | None = None,
+            time_limit: float | None = None, checkpoints: str = "visible", cell: float | None = None,
             workers: int | None = None, scheduler: str | None = None, out=None, resume=None,
             robot=None, learn=None, progress: bool = False) -> Table:
     """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
@@ -143,8 +143,9 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     recover : bool, default True
         Cognizant-failure recovery (thesis 7.1.1): when trapped, the sensed obstacle joins the planner's
         map and the route is replanned; False ends a run at its first trap.
-    time_limit : float, default 120
-        Simulated seconds per run.
+    time_limit : float, optional
+        Simulated seconds per run; by default ten times the planned route's time at the robot's top speed,
+        and at least 120 (:func:`evaluation.scenario.time_limit_for`).
     checkpoints : {"visible", "thesis"}, default "visible"
         The planner's checkpoint rule (:func:`ekm.run`).
     cell : float, optional
