@@ -65,6 +65,7 @@ class ScenarioConfig:
     trap_after: float = 20.0  # s without progress (closer, or new ground) before the monitor says trapped
     trap_progress: float = 0.01  # m: coming this much closer to the checkpoint than ever before is progress
     trap_ground: float = 0.05  # m: side of the squares of ground; entering one never visited is progress
+    trap_loop: float | None = 1.5  # m driven on ground visited before without coming closer: a loop (None: off)
     recover: bool = True  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
     max_recoveries: int = 5  # traps recovered from before a run gives up
     sensed_radius: float = 0.005  # m: an obstacle point added to the map on recovery: a disc of the IR's τ
@@ -90,6 +91,8 @@ class ScenarioConfig:
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise InputError(f"scenario: {name} must be a positive number, got {value!r}")
+        if self.trap_loop is not None and not self.trap_loop > 0:
+            raise InputError(f"scenario: trap_loop must be > 0 or None, got {self.trap_loop!r}")
         if self.capture_radius is not None and not self.capture_radius > 0:
             raise InputError(f"scenario: capture_radius must be > 0, got {self.capture_radius!r}")
         if self.look_every < 1 or self.look_ahead < 0:
@@ -365,7 +368,8 @@ def start(world: World, body, seed: int, config: ScenarioConfig, spec: str, on_t
     current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine,
                    padding=robot.radius)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
-    shell = Shell(world, body, config, sim, TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground),
+    shell = Shell(world, body, config, sim, TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground,
+                                                          config.trap_loop),
                   rec, np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32), on_tick,
                   poses=[sim.pose], times=[0.0])
     return shell, Course(current, world, padded_obstacles(world, 0.0, robot.radius))
