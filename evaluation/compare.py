@@ -66,6 +66,7 @@ def failed_record(job: Job, reason: str, world: str | None = None, family: str |
     return {"world": world or job.world, "architecture": job.architecture, "reached": False, "time_s": None,
             "path_m": None, "collisions": 0, "checkpoints_reached": 0, "replans": 0, "trapped": False,
             "final_distance_m": None, "contact_s": 0.0, "arrived": False, "recoveries": 0, "ended": "failed",
+            "barn_score": 0.0,
             "failed": reason, "seed": job.seed, "label": job.label, "trial": job.trial, "given": job.world,
             "family": family}
 

@@ -197,11 +197,14 @@ class RunRecord:
         from evaluation import motion
 
         from planner.checkpoints import path_length
+        from robots.params import KHEPERA
 
         route = path_length(self.poses[0, :2], self.plans[0].checkpoints) if self.plans and len(self.poses) else 0.0
         # a moving goal is caught, not stopped at: its precision is the capture radius, not the robot's
+        robot = self.robot or KHEPERA
         return motion.measures([c[1:] for c in self.commands], self.times, self.poses, self.period,
-                               self.world.goal_at, route, self.arrived and not self.world.moving_goal)
+                               self.world.goal_at, route, self.arrived and not self.world.moving_goal,
+                               reached=self.reached, time_s=self.time_s, top_speed=robot.max_wheel_speed)
 
 
 def mover_radius(shape) -> float:
