@@ -542,7 +542,7 @@ def _seen_later(position, current, index: int, config: ScenarioConfig, sight) ->
     need = min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
     last = min(index + config.look_ahead, len(current.checkpoints) - 1)
     for j in range(last, index, -1):
-        if visibility.segment_slack(position, current.checkpoints[j], sight) >= need:
+        if visibility.segment_clear(position, current.checkpoints[j], sight, need):
             return j
     return index
 
@@ -556,7 +556,7 @@ def _sees_next(position, current, index: int, config: ScenarioConfig, sight) -> 
     if np.linalg.norm(position - here) > config.pass_radius:
         return False
     need = min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
-    return visibility.segment_slack(position, current.checkpoints[index + 1], sight) >= need
+    return visibility.segment_clear(position, current.checkpoints[index + 1], sight, need)
 
 
 def _in_one_loop(step):
