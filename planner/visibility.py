@@ -233,6 +233,7 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
     """
     n = len(points)
     floor = np.minimum(slacks, margin)
+    seen: dict = {}  # (a, c, least) -> whether the leg a–c is clear
     # A corner: (point, its slack capped at margin, the path index whose stretch it stands for).
     Corner = tuple
 
@@ -244,7 +245,10 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
         """Whether the leg a–c is clear; ``stretch`` (two corners) widens the path stretch whose least slack
         counts, for a corner that replaces those between them."""
         least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
-        return segment_clear(a[0], c[0], obstacles, least)
+        key = (a[0].tobytes(), c[0].tobytes(), least)  # the passes below ask the same legs again and again
+        if key not in seen:
+            seen[key] = segment_clear(a[0], c[0], obstacles, least)
+        return seen[key]
 
     def at(i: int) -> Corner:
         return (points[i], float(floor[i]), i)
