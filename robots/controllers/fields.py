@@ -115,9 +115,9 @@ class FieldParams:
                                                           "obstacle in the way of the wheels' motion (0: no guard)"})
     guard_clearance: float = field(default=0.01, metadata={"help": "form=extended: m beside the body within which a "
                                                                   "remembered obstacle is in the way of the wheels"})
-    gap_share: float = field(default=0.25, metadata={"help": "form=extended: the clearance beside a remembered obstacle "
-                                                            "is at most this share of the room the sensed gap across "
-                                                            "the way to the target leaves the body (0: fixed)"})
+    gap_share: float = field(default=0.25, metadata={
+        "help": "form=extended: the clearance beside a remembered obstacle is at most this share of the room the "
+                "sensed gap across the way to the target leaves the body (0: fixed)"})
 
     def __post_init__(self):
         for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge"):
