@@ -66,6 +66,7 @@ def failed_record(job: Job, reason: str, world: str | None = None, family: str |
     return {"world": world or job.world, "architecture": job.architecture, "reached": False, "time_s": None,
             "path_m": None, "collisions": 0, "checkpoints_reached": 0, "replans": 0, "trapped": False,
             "final_distance_m": None, "contact_s": 0.0, "arrived": False, "recoveries": 0, "ended": "failed",
+            "barn_score": 0.0,
             "failed": reason, "seed": job.seed, "label": job.label, "trial": job.trial, "given": job.world,
             "family": family}
 
@@ -232,7 +233,9 @@ def by_family(records: list[dict], labels) -> list[dict]:
 
     generated = [r for r in records if r.get("family")]
     rows = []
-    for family in [f for f in FAMILIES if any(r["family"] == f for r in generated)] + (["all"] if generated else []):
+    seen = list(dict.fromkeys(r["family"] for r in generated))  # combined families (A+B) after the registered ones
+    order = [f for f in FAMILIES if f in seen] + [f for f in seen if f not in FAMILIES]
+    for family in order + (["all"] if generated else []):
         for label in labels:
             rs = [r for r in generated if r["label"] == label and family in ("all", r["family"])]
             rows.append({"family": family, "architecture": label, "worlds": len({r["given"] for r in rs}),

@@ -11,6 +11,13 @@ monitor routines (e.g., time-out)". :class:`TrapMonitor` is that time-out. Two t
 
 When neither has happened for ``after`` seconds the robot is trapped: circling or dithering in place
 revisits the same squares, and a robot pinned against an obstacle comes no closer.
+
+A robot can also loop (issue 35): pushed off the mouth of a narrow niche, it circles the room and comes back,
+again and again, each lap long enough to touch a few new squares at its edges and so reset the time-out. So the
+monitor also ends **loops**: once the robot has driven ``loop`` metres on ground it had visited before (a square
+it comes back to after leaving it) since it last came closer to its checkpoint, it is trapped however much new
+ground it brushes on the way. A detour onto new ground never adds to that count; driving back the way it came
+does, and after ``loop`` metres of it without getting closer, recovery's replan is what the robot needs anyway.
 """
 
 from __future__ import annotations
@@ -21,23 +28,34 @@ import math
 class TrapMonitor:
     """Time-out on progress towards the checkpoint and onto new ground; :meth:`reset` when the checkpoint changes."""
 
-    def __init__(self, after: float, progress: float, ground: float | None = 0.05):
-        self.after, self.progress, self.ground = after, progress, ground
+    def __init__(self, after: float, progress: float, ground: float | None = 0.05, loop: float | None = None):
+        self.after, self.progress, self.ground, self.loop = after, progress, ground, loop
         self.visited: set[tuple[int, int]] = set()
+        self.square: tuple[int, int] | None = None  # the square the robot is in
+        self.old = False  # ... and whether it had been there before it last entered
+        self.last = None  # the last position (x, y)
         self.reset(0.0)
 
     def reset(self, t: float) -> None:
-        """A new checkpoint (or a new plan) at time ``t``: measure the distance afresh (visited ground stays)."""
-        self.best, self.since = math.inf, t
+        """A new checkpoint (or a new plan) at time ``t``: measure the distance and the loop afresh (visited ground
+        stays)."""
+        self.best, self.since, self.looped = math.inf, t, 0.0
 
     def update(self, t: float, distance: float, position=None) -> bool:
         """Record the robot's ``distance`` (m) to its checkpoint and its ``position`` (x, y) at ``t`` (s); True
-        when it is trapped. Without ``position`` (or with ``ground`` None) only the distance counts."""
+        when it is trapped (no progress for ``after`` s, or ``loop`` m driven on old ground without coming closer).
+        Without ``position`` (or with ``ground`` None) only the distance counts."""
         if distance < self.best - self.progress:
-            self.best, self.since = distance, t
+            self.best, self.since, self.looped = distance, t, 0.0
         if position is not None and self.ground:
             square = (math.floor(position[0] / self.ground), math.floor(position[1] / self.ground))
+            if square != self.square:
+                self.square, self.old = square, square in self.visited
+            if self.old and self.last is not None:
+                self.looped += math.dist(position, self.last)
             if square not in self.visited:
                 self.visited.add(square)
                 self.since = t
-        return t - self.since >= self.after
+            self.last = (float(position[0]), float(position[1]))
+        looping = self.loop is not None and self.looped >= self.loop
+        return looping or t - self.since >= self.after

@@ -15,7 +15,11 @@ tick do not pass for jerkiness. Each measure is one function of a :class:`Traces
 - ``path_ratio``: path length over the planner's first route (start, checkpoints, goal; the straight legs,
   :func:`planner.checkpoints.path_length`);
 - ``stop_distance_m``: distance from the goal where the robot stopped there, None if it never did (and for a
-  moving goal, which is caught within the capture radius, not stopped at).
+  moving goal, which is caught within the capture radius, not stopped at);
+- ``barn_score``: the BARN navigation score (Perille et al. 2020; the BARN challenge, ICRA 2022 on):
+  ``success × OT / clip(AT, 2 OT, 8 OT)``, with OT the optimal time, the planner's first route at the robot's top
+  speed, and AT the run's time; 0 for a run that did not reach the goal, at most 0.5 (a run in twice the optimal
+  time or less), so a table's mean compares with the challenge's. None without a route or a top speed.
 """
 
 from __future__ import annotations
@@ -54,6 +58,9 @@ class Traces:
     route_m: float
     stop_m: float | None
     period: float
+    reached: bool = False
+    time_s: float | None = None
+    top_speed: float | None = None
 
 
 def command_change(m: Traces) -> float:
@@ -83,6 +90,17 @@ def stop_distance(m: Traces) -> float | None:
     return None if m.stop_m is None else round(m.stop_m, 5)
 
 
+def barn_score(m: Traces) -> float | None:
+    if not (m.route_m > 0 and m.top_speed and m.time_s is not None):
+        return None
+    return round(barn(m.reached, m.time_s, m.route_m / m.top_speed), 4)
+
+
+def barn(success: bool, actual_s: float, optimal_s: float) -> float:
+    """The BARN score of one run: ``success × optimal_s / clip(actual_s, 2 optimal_s, 8 optimal_s)`` (in [0, 0.5])."""
+    return float(success) * optimal_s / min(max(actual_s, 2 * optimal_s), 8 * optimal_s)
+
+
 @dataclass(frozen=True)
 class Measure:
     """One measure: its record's ``key`` (its unit last), the ``head`` of its column in the reproduction pages'
@@ -105,6 +123,7 @@ MEASURES = (
     Measure("turn_reversals_per_m", "turn reversals (/m)", "reversals /m", 1.0, 1, turn_reversals),
     Measure("path_ratio", "path / route", "path/route", 1.0, 2, path_ratio),
     Measure("stop_distance_m", "stop distance (mm)", "stop mm", 1000.0, 1, stop_distance),
+    Measure("barn_score", "BARN score", "BARN", 1.0, 3, barn_score),
 )
 
 KEYS = tuple(m.key for m in MEASURES)
@@ -119,10 +138,12 @@ def at_ticks(times: np.ndarray, poses: np.ndarray, period: float) -> np.ndarray:
     return poses[index]
 
 
-def traces(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool) -> Traces:
+def traces(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool, reached: bool = False,
+           time_s: float | None = None, top_speed: float | None = None) -> Traces:
     """The :class:`Traces` of one run. ``commands``: ``(n, 2)`` wheel commands (m/s), one a tick; ``times`` ``(S,)``
     and ``poses`` ``(S, 3)`` the traced poses; ``goal_at(t)`` the goal (x, y) at time t; ``route_m`` the planner's
-    first route; ``arrived`` whether the run stopped at the goal."""
+    first route; ``arrived`` whether the run stopped at the goal; ``reached`` whether it did so without a collision,
+    ``time_s`` when, and ``top_speed`` the robot's (m/s), for the BARN score."""
     times, poses = np.asarray(times, float), np.asarray(poses, float)
     ticks = at_ticks(times, poses, period)
     t = np.asarray(times[0] if len(times) else 0.0) + period * np.arange(len(ticks))
@@ -134,12 +155,12 @@ def traces(commands, times, poses, period: float, goal_at, route_m: float, arriv
     return Traces(commands=np.asarray(commands, float).reshape(-1, 2), ticks=ticks, t=t,
                   omega=np.diff(heading) / period, steps=np.linalg.norm(np.diff(ticks[:, :2], axis=0), axis=1),
                   away=away, path_m=path_length(poses[0], poses[1:, :2]) if len(poses) else 0.0, route_m=route_m,
-                  stop_m=stop, period=period)
+                  stop_m=stop, period=period, reached=reached, time_s=time_s, top_speed=top_speed)
 
 
-def measures(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool) -> dict:
+def measures(commands, times, poses, period: float, goal_at, route_m: float, arrived: bool, **score) -> dict:
     """Every measure of :data:`MEASURES` for one run (the arguments: :func:`traces`'), by key."""
-    m = traces(commands, times, poses, period, goal_at, route_m, arrived)
+    m = traces(commands, times, poses, period, goal_at, route_m, arrived, **score)
     return {measure.key: measure.of(m) for measure in MEASURES}
 
 

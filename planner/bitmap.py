@@ -30,7 +30,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ekm.errors import InputError
-from robots.geometry import Box, Circle, Polygon, Segment, Shape, distance, polygon_contains, segment_distance
+from robots.geometry import Box, Circle, Polygon, Segment, Shape, bounds, distance, polygon_contains, segment_distance
 
 FREE, OCCUPIED = 0, -1
 
@@ -113,7 +113,17 @@ def _rasterise(obstacles, size, cell: float) -> np.ndarray:
     lo, hi = cell_squares((ny, nx), cell)
     free = np.all(hi <= np.asarray(size, dtype=float) + TIE, axis=-1)
     for shape, clearance in obstacles:
-        free &= square_distance(lo, hi, shape) >= clearance - TIE
+        # Only the cells near the shape's box can be closer than its clearance (a square's distance to the shape
+        # is at least its distance to the box): the window one cell beyond the box grown by the clearance. A wall
+        # of a 4 m world touches a few hundred of its 40 000 cells.
+        x0, y0, x1, y1 = bounds(shape)
+        grow = clearance + cell
+        i0, i1 = max(0, int((x0 - grow) // cell)), min(nx, int((x1 + grow) // cell) + 1)
+        j0, j1 = max(0, int((y0 - grow) // cell)), min(ny, int((y1 + grow) // cell) + 1)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        window = (slice(j0, j1), slice(i0, i1))
+        free[window] &= square_distance(lo[window], hi[window], shape) >= clearance - TIE
     return np.where(free, FREE, OCCUPIED).astype(np.int32)
 
 

@@ -35,7 +35,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from planner.bitmap import FREE, Padded, free_cell_at
-from robots.geometry import bounds, distance
+from robots.geometry import Segment, bounds, distance
 
 #: Extra clearance (m) beyond the cushion that checkpoint legs keep where there is room: a little less
 #: than the 1.5 cm each side that an 8 cm doorway leaves the 5 cm robot.
@@ -59,23 +59,95 @@ def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
     negative inside a cushion."""
     p = np.asarray(points, dtype=float)
     out = np.full(p.shape[:-1], np.inf)
+    walls = [(shape, clearance) for shape, clearance in obstacles if isinstance(shape, Segment)]
     for shape, clearance in obstacles:
-        out = np.minimum(out, distance(p, shape) - clearance)
+        if not isinstance(shape, Segment):
+            out = np.minimum(out, distance(p, shape) - clearance)
+    if walls:
+        flat = p.reshape(-1, 2)
+        chunk = max(1, 2_000_000 // max(1, len(flat)))
+        least = out.reshape(-1)
+        for k in range(0, len(walls), chunk):
+            least = np.minimum(least, _walls_slack(flat, walls[k:k + chunk]))
+        out = least.reshape(out.shape)
     return out
+
+
+def _walls_slack(p: np.ndarray, walls: list) -> np.ndarray:
+    """min over the wall segments of distance − clearance at ``p`` ``(n, 2)``, all walls at once (the arithmetic of
+    :func:`robots.geometry.segment_distance`, a wall to a column): a large world has hundreds of walls, and one
+    call a wall cost more than the sums."""
+    a = np.array([w.start for w, _ in walls], dtype=float)  # (m, 2)
+    ab = np.array([w.end for w, _ in walls], dtype=float) - a
+    denom = np.einsum("mi,mi->m", ab, ab)
+    rel = p[:, None, :] - a[None]  # (n, m, 2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(denom > 0, np.clip(np.einsum("nmi,mi->nm", rel, ab) / denom, 0.0, 1.0), 0.0)
+    d = rel - t[..., None] * ab[None]
+    clearance = np.array([c for _, c in walls], dtype=float)
+    return np.min(np.sqrt(np.einsum("nmi,nmi->nm", d, d)) - clearance, axis=1)
 
 
 def segment_slack(a, b, obstacles: Sequence[Padded], step: float = STEP) -> float:
     """Least slack (m) of the points of segment ``a``–``b``, sampled every ``step`` (the slack is 1-Lipschitz,
     so the true least is within ``step / 2`` of this). Only obstacles whose grown box meets the segment's
     box are measured."""
+    pts, near = _samples(a, b, obstacles, step)
+    if not near:
+        return math.inf
+    return float(slack(pts, near).min())
+
+
+def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float = STEP, every: int = 16) -> bool:
+    """Whether ``segment_slack(a, b, obstacles, step) >= least`` — the same answer, found faster: the slack is
+    measured first at every ``every``-th sample point (and the last); one below ``least`` answers no, and if even
+    the least of them less ``every / 2`` sample spacings (the slack is 1-Lipschitz, and every sample point is that
+    close to a measured one) is ``>= least``, every sample point is clear. Only in between are all measured. A
+    long leg of a large world has thousands of sample points near dozens of walls; most legs are decided on a
+    sixteenth of them (issue 35: planning a 4 m world took seconds)."""
+    pts, near = _samples(a, b, obstacles, step)
+    if not near:
+        return math.inf >= least
+    n = len(pts)
+    idx = np.unique(np.append(np.arange(0, n, every), n - 1))
+    coarse = float(slack(pts[idx], near).min())
+    if coarse < least:
+        return False
+    spacing = float(np.linalg.norm(pts[-1] - pts[0])) / (n - 1)
+    if coarse - (every / 2) * spacing >= least:
+        return True
+    return float(slack(pts, near).min()) >= least
+
+
+def _samples(a, b, obstacles: Sequence[Padded], step: float):
+    """The sample points ``(n, 2)`` of segment ``a``–``b`` every ``step`` (at least its two ends) and the padded
+    obstacles whose box grown by their clearance + 5 cm meets the segment's box."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     n = max(2, int(math.ceil(float(np.linalg.norm(b - a)) / step)) + 1)
     lo, hi = np.minimum(a, b), np.maximum(a, b)
-    near = [(s, c) for s, c in obstacles if _box_near(bounds(s), lo, hi, c + 0.05)]
-    if not near:
-        return math.inf
-    pts = a + np.linspace(0.0, 1.0, n)[:, None] * (b - a)
-    return float(slack(pts, near).min())
+    boxes = _boxes(obstacles)
+    hit = ((boxes[:, 0] <= hi[0]) & (lo[0] <= boxes[:, 2]) & (boxes[:, 1] <= hi[1]) & (lo[1] <= boxes[:, 3]))
+    near = [obstacles[k] for k in np.flatnonzero(hit)]
+    return a + np.linspace(0.0, 1.0, n)[:, None] * (b - a), near
+
+
+_BOXES: dict = {}
+
+
+def _boxes(obstacles: Sequence[Padded]) -> np.ndarray:
+    """The obstacles' bounding boxes grown by their clearance + 5 cm, ``(k, 4)`` — as :func:`_box_near` tests them —
+    computed once per obstacle list (kept while the list lives; a plan and a run each test one list thousands of
+    times)."""
+    key = id(obstacles)
+    held = _BOXES.get(key)
+    if held is not None and held[0] is obstacles:
+        return held[1]
+    boxes = np.array([(lambda x0, y0, x1, y1, g: (x0 - g, y0 - g, x1 + g, y1 + g))(*bounds(s), c + 0.05)
+                      for s, c in obstacles], dtype=float).reshape(-1, 4)
+    if len(_BOXES) > 64:
+        _BOXES.clear()
+    _BOXES[key] = (obstacles, boxes)
+    return boxes
 
 
 def _box_near(box, lo, hi, grow: float) -> bool:
@@ -161,6 +233,7 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
     """
     n = len(points)
     floor = np.minimum(slacks, margin)
+    seen: dict = {}  # (a, c, least) -> whether the leg a–c is clear
     # A corner: (point, its slack capped at margin, the path index whose stretch it stands for).
     Corner = tuple
 
@@ -172,7 +245,10 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
         """Whether the leg a–c is clear; ``stretch`` (two corners) widens the path stretch whose least slack
         counts, for a corner that replaces those between them."""
         least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
-        return segment_slack(a[0], c[0], obstacles) >= least
+        key = (a[0].tobytes(), c[0].tobytes(), least)  # the passes below ask the same legs again and again
+        if key not in seen:
+            seen[key] = segment_clear(a[0], c[0], obstacles, least)
+        return seen[key]
 
     def at(i: int) -> Corner:
         return (points[i], float(floor[i]), i)

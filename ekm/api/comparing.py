@@ -96,14 +96,14 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
     """The generated worlds of ``suite`` — ``"FAMILY:COUNT[,FAMILY:COUNT...]"`` or a list of such items — as
     spellings ``FAMILY:SEED`` with seeds ``first_seed … first_seed + COUNT − 1`` for each family (seeds from
     1000 on are the test seeds: no parameter of the package was chosen on them)."""
-    from robots.generator import FAMILIES
+    from robots.generator import FAMILIES, family_of
 
     items = [t.strip() for t in suite.split(",")] if isinstance(suite, str) else [str(t) for t in suite]
     first_seed = whole(first_seed, "--world-seed", _PROG, strict=False)
     names = []
     for item in items:
         family, sep, count = item.partition(":")
-        if family not in FAMILIES:
+        if family_of(family) is None:
             from robots.spelling import did_you_mean
 
             raise InputError(f"--suite {item!r}: unknown family {family!r}{did_you_mean(family, FAMILIES)} "
@@ -120,7 +120,7 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
 
 def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None, world_seed: int = 1000,
             trials: int = 10, seed: int = 0, maps=None, recover: bool = True,
-            time_limit: float = 120.0, checkpoints: str = "visible", cell: float | None = None,
+            time_limit: float | None = None, checkpoints: str = "visible", cell: float | None = None,
             workers: int | None = None, scheduler: str | None = None, out=None, resume=None,
             robot=None, learn=None, progress: bool = False) -> Table:
     """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
@@ -147,8 +147,9 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     recover : bool, default True
         Cognizant-failure recovery (thesis 7.1.1): when trapped, the sensed obstacle joins the planner's
         map and the route is replanned; False ends a run at its first trap.
-    time_limit : float, default 120
-        Simulated seconds per run.
+    time_limit : float, optional
+        Simulated seconds per run; by default ten times the planned route's time at the robot's top speed,
+        and at least 120 (:func:`evaluation.scenario.time_limit_for`).
     checkpoints : {"visible", "thesis"}, default "visible"
         The planner's checkpoint rule (:func:`ekm.run`).
     cell : float, optional

@@ -13,13 +13,19 @@ _PROG = "ekm run"
 SENSORS = ("short", "long")
 
 
+def _floor() -> float:
+    from evaluation.scenario import TIME_FLOOR_S
+
+    return TIME_FLOOR_S
+
+
 def scenario_config(prog: str, *, time_limit, recover, checkpoints, cell):
     """The :class:`evaluation.scenario.ScenarioConfig` of ``ekm run`` / ``ekm compare``'s options, each checked
     with the command's own one-line errors."""
     from evaluation.scenario import ScenarioConfig
     from planner import DEFAULT_CELL, RULES
 
-    time_limit = number(time_limit, "--time-limit", prog, strict=True)
+    time_limit = None if time_limit is None else number(time_limit, "--time-limit", prog, strict=True)
     choice(checkpoints, RULES, "--checkpoints", prog)
     cell = DEFAULT_CELL if cell is None else number(cell, "--cell", prog, strict=True)
     return ScenarioConfig(time_limit=time_limit, recover=bool(recover), checkpoints=checkpoints, cell=cell)
@@ -144,7 +150,7 @@ class Outcome(Result):
 
 
 def run(world, architecture: str, *, maps=None, trial: int | None = None, sensors: str | None = None,
-        recover: bool = True, seed: int = 0, time_limit: float = 120.0, checkpoints: str = "visible",
+        recover: bool = True, seed: int = 0, time_limit: float | None = None, checkpoints: str = "visible",
         cell: float | None = None, robot=None, learn=None, progress: bool = False) -> Outcome:
     """Drive the simulated robot from the world's start to its goal: the slippery-cell planner's
     checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; docs/design.md §5).
@@ -169,8 +175,9 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         the run at the first trap, as the thesis's runs do.
     seed : int, default 0
         Noise seed of the run; the same seed gives the same run.
-    time_limit : float, default 120
-        Simulated seconds before the run is given up.
+    time_limit : float, optional
+        Simulated seconds before the run is given up; by default ten times the planned route's time at the
+        robot's top speed, and at least 120 (:func:`evaluation.scenario.time_limit_for`).
     checkpoints : {"visible", "thesis"}, default "visible"
         The planner's checkpoint rule: consecutive checkpoints see each other with the robot's clearance
         (:mod:`planner.visibility`), or the greedy rule of thesis ch. 3.2.3 as written.
@@ -241,7 +248,7 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(total=round(config.time_limit, 1), unit="sim s", desc=f"{spec.label} in {w.name}",
+        bar = tqdm(total=round(config.time_limit or _floor(), 1), unit="sim s", desc=f"{spec.label} in {w.name}",
                    dynamic_ncols=True, bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}]")
 
     def on_tick(t):

@@ -120,10 +120,11 @@ def generate(family: str, seed: int, difficulty: float | None = None):
         w.name, w.difficulty.level, w.difficulty.route_length_m     # "maze:7", 0.0..1.0, metres
         robots.worldfile.save_world(w, "maze-7.json")               # what --out writes
     """
-    from robots.generator import FAMILIES
+    from robots.generator import FAMILIES, family_of
     from robots.generator import generate as make
 
-    choice(family, tuple(FAMILIES), "--generate", _PROG)
+    if family_of(family) is None:  # a family, or a combination A+B (large+traffic)
+        choice(family, tuple(FAMILIES), "--generate", _PROG)
     seed = whole(seed, "--seed", _PROG, strict=False)
     if difficulty is not None:
         difficulty = number(difficulty, "--difficulty", _PROG, strict=False)

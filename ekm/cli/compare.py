@@ -102,9 +102,20 @@ def print_robot(table) -> None:
 
 def print_families(rows) -> None:
     """The comparison by family of generated worlds: success with its 95 % interval over all their runs."""
-    head = ("family", "architecture", "worlds", "success", "95 % interval", "time s", "trapped", "collisions", "failed")
-    print_columns([head] + [(r["family"], r["architecture"], str(r["worlds"]), *_success(r), _mean(r["mean_time_s"], 1),
-                      str(r["trapped"]), str(r["collisions"]), str(r["failed"])) for r in rows])
+    head = ("family", "architecture", "worlds", "success", "95 % interval", "BARN", "time s", "trapped", "collisions",
+            "failed")
+    print_columns([head] + [(r["family"], r["architecture"], str(r["worlds"]), *_success(r), _barn(r),
+                             _mean(r["mean_time_s"], 1), str(r["trapped"]), str(r["collisions"]), str(r["failed"]))
+                            for r in rows])
+
+
+def _barn(r) -> str:
+    """The row's mean BARN score ± the half-width of its 95 % interval (:func:`evaluation.motion.barn_score`)."""
+    score = r.get("motion", {}).get("barn_score") or {}
+    if score.get("mean") is None:
+        return ""
+    lo, hi = score["ci95"]
+    return f"{score['mean']:.3f}±{(hi - lo) / 2:.3f}"
 
 
 def _success(r) -> tuple[str, str]:
@@ -123,8 +134,9 @@ def _mean(value, digits: int) -> str:
 
 def print_table(rows) -> None:
     """The comparison as a table: success with its 95 % interval, mean time and path of the successes."""
-    head = ("architecture", "world", "success", "95 % interval", "time s", "path m", "trapped", "collisions", "runs")
-    print_columns([head] + [(r["architecture"], r["world"], *_success(r), _mean(r["mean_time_s"], 1),
+    head = ("architecture", "world", "success", "95 % interval", "BARN", "time s", "path m", "trapped", "collisions",
+            "runs")
+    print_columns([head] + [(r["architecture"], r["world"], *_success(r), _barn(r), _mean(r["mean_time_s"], 1),
                              _mean(r["mean_path_m"], 2), str(r["trapped"]), str(r["collisions"]), r["runs_by_trial"])
                             for r in rows])
 

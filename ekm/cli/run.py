@@ -37,8 +37,9 @@ def add_scenario_options(p) -> None:
                         "clearance; default) or thesis (the greedy rule of ch. 3.2.3)")
     p.add_argument("--cell", type=positive_float, metavar="M",
                    help="planner's bitmap cell in metres (default 0.02; halved automatically where no route fits)")
-    p.add_argument("--time-limit", type=positive_float, default=120.0, metavar="S",
-                   help="simulated seconds before a run is given up (default 120)")
+    p.add_argument("--time-limit", type=positive_float, default=None, metavar="S",
+                   help="simulated seconds before a run is given up (default: 10x the planned route at the robot's "
+                        "top speed, at least 120)")
 
 
 def add_parser(sub) -> None:

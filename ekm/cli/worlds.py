@@ -80,10 +80,11 @@ def generate(args) -> None:
     from ekm.api.worlds import generate as make
     from ekm.errors import InputError
     from ekm.provenance import provenance
-    from robots.generator import FAMILIES
+    from robots.generator import FAMILIES, family_of
     from robots.worldfile import save_world
 
-    choice(args.generate, FAMILIES.names(), "--generate", "ekm worlds")
+    if family_of(args.generate) is None:  # a family, or a combination A+B (large+traffic)
+        choice(args.generate, FAMILIES.names(), "--generate", "ekm worlds")
     if args.check:
         raise InputError("ekm worlds: argument --check: not with --generate")
     for option in ("seed", "out"):

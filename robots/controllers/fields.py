@@ -48,6 +48,9 @@ fields' equations and adds three things, each with its reason:
    doorway's edges into the doorway — and its angular width is the angle the robot's body subtends at
    the point's distance (Eq. 5.6's δ_α scaled by distance): a near obstacle blocks a wide fan of
    directions, a far one a narrow one, whereas a fixed δ_α lets a wall seen from afar close a doorway;
+   the clearance the width adds to the body follows the sensed gap (:func:`gap_clearance`, ``gap_share``,
+   issue 35): a quarter of the room a passage leaves the body, at most 1 cm, so that a passage barely
+   wider than the robot (a niche 7.5 cm wide) stays open;
 3. **commitment to a side** (:func:`committed_winner`, ``commit``): while a remembered obstacle lies
    between the robot and the target, the robot keeps to the side it first turned to and takes the
    first open direction turning from the target's direction that way — the target field measured one
@@ -112,12 +115,15 @@ class FieldParams:
                                                           "obstacle in the way of the wheels' motion (0: no guard)"})
     guard_clearance: float = field(default=0.01, metadata={"help": "form=extended: m beside the body within which a "
                                                                   "remembered obstacle is in the way of the wheels"})
+    gap_share: float = field(default=0.25, metadata={
+        "help": "form=extended: the clearance beside a remembered obstacle is at most this share of the room the "
+                "sensed gap across the way to the target leaves the body (0: fixed)"})
 
     def __post_init__(self):
         for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if self.clearance < 0 or self.guard_s < 0 or self.mover_near < 0:
+        if self.clearance < 0 or self.guard_s < 0 or self.mover_near < 0 or self.gap_share < 0:
             raise ValueError(f"clearance, guard_s and mover_near must be >= 0, got {self.clearance}, {self.guard_s}, "
                              f"{self.mover_near}")
         if self.memory_points < 1:
@@ -151,16 +157,36 @@ def obstacle_field(w, winners, seen, p: FieldParams, cfg: EKMConfig):
     return jnp.sum(jnp.where(seen[:, None], g, 0.0), axis=0)
 
 
-def body_field(w, u_obs, valid, radius: float, p: FieldParams, cfg: EKMConfig):
+def body_field(w, u_obs, valid, radius: float, p: FieldParams, cfg: EKMConfig, clearance=None):
     """b_i ``(N²,)`` of obstacles placed where they are (``form=extended``): Eq. 5.6's stretched Gaussian
     centred on each obstacle's own (α_j, d_j), with δ_α scaled so that its angular half-width (where
-    G_b = e⁻¹) is the angle the robot's body subtends there (:func:`memory.cone_half_width`)."""
-    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=p.clearance)  # rad
+    G_b = e⁻¹) is the angle the robot's body subtends there (:func:`memory.cone_half_width`), grown by
+    ``clearance`` (m, one per obstacle ``(h,)``; default ``p.clearance``)."""
+    clearance = p.clearance if clearance is None else clearance
+    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=clearance)  # rad
     d_alpha = wrap_near(u_obs[:, None, 0] - w[None, :, 0])  # (h, N²)
     d_d = (u_obs[:, None, 1] - w[None, :, 1]) / cfg.d_scale  # map units
     dd = delta_d(u_obs[:, None, 1], w[None, :, 1], p.tau)
     g = jnp.exp(-jnp.square(d_alpha / half[:, None]) - dd * jnp.square(d_d) / p.sigma_b**2)
     return jnp.sum(jnp.where(valid[:, None], g, 0.0), axis=0)
+
+
+def gap_clearance(u_obs, valid, target_alpha, radius: float, p: FieldParams):
+    """The clearance (m) each remembered obstacle ``u_obs`` ``(h, 2)`` (where ``valid``) keeps beside the body
+    (``form=extended``, an extension of Eq. 5.6's width, issue 35): ``min(p.clearance, gap_share × (g_j − 2R))``,
+    g_j the gap (m, surface to surface) from obstacle j to the nearest obstacle on the other side of the target's
+    direction ``target_alpha`` — the width of the passage the robot takes between them. A fixed clearance of 1 cm
+    leaves a robot 5 cm wide 2.5 mm of play in a 7.5 cm passage: every direction into it is closed unless the
+    robot is on its centre line, and the fields push the robot off a narrow niche's mouth. Following the gap, the
+    inhibition narrows where the passage does, and is the thesis's (a body-wide cone) where it has room."""
+    if p.gap_share <= 0:
+        return jnp.full(u_obs.shape[:1], p.clearance)
+    r = u_obs[:, 1] + radius  # from the robot's centre
+    xy = jnp.stack([r * jnp.cos(u_obs[:, 0]), r * jnp.sin(u_obs[:, 0])], axis=-1)
+    side = wrap(u_obs[:, 0] - target_alpha) >= 0
+    across = valid[:, None] & valid[None, :] & (side[:, None] != side[None, :])
+    gap = jnp.min(jnp.where(across, jnp.hypot(*(xy[:, None, :] - xy[None, :, :]).transpose(2, 0, 1)), jnp.inf), axis=1)
+    return jnp.clip(p.gap_share * (gap - 2 * radius), 0.0, p.clearance)
 
 
 def obstacle_inputs(readings, angles):
@@ -214,8 +240,9 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
         directions = jnp.append(ekm.w[:, 0], obs.target[0])
 
         def per_neuron(u, v):  # on the points that count only (most slots are empty or beyond the target)
-            return (body_field(ekm.w, u, v, radius, p, cfg),
-                    mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=p.clearance),
+            clear = gap_clearance(u, v, obs.target[0], radius, p)
+            return (body_field(ekm.w, u, v, radius, p, cfg, clear),
+                    mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=clear),
                     mem.blocked_along(directions, jnp.minimum(obs.target[1], p.near), u, v, radius=radius,
                                       clearance=0.0))
 

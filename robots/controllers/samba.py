@@ -97,6 +97,9 @@ class SambaParams:
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    escape_s: float = field(default=1.5, metadata={"help": "a declared mover that would hit the robot standing where "
+                                                           "it is within this many s: it drives straight ahead or back "
+                                                           "out of the mover's way (0: never), s"})
 
     def __post_init__(self):
         for name in ("tau_s", "avoid_ttc", "brake_s", "memory_s", "merge"):
@@ -283,8 +286,38 @@ def step(state: SambaState, obs: Observation, *, p: SambaParams, robot: RobotPar
     """One tick: :func:`maps`, then the chosen (direction, speed) as wheel speeds (:func:`velocity_to_wheels`),
     or zero when no action weighs above zero."""
     tick = maps(state, obs, p, robot)
-    wheels = velocity_to_wheels(tick.direction, tick.speed, robot)
-    return tick.state, jnp.where(tick.go, wheels, 0.0)
+    wheels = jnp.where(tick.go, velocity_to_wheels(tick.direction, tick.speed, robot), 0.0)
+    if p.escape_s > 0:
+        wheels = escape(wheels, tick, p, robot)
+    return tick.state, wheels
+
+
+def escape(wheels, tick: Tick, p: SambaParams, robot: RobotParams = KHEPERA):
+    """The wheel command when a declared mover would hit the robot where it stands within ``escape_s`` (an
+    extension, issue 35): the straight motion — ahead or back, at any of the grid's speeds — that puts off the
+    first contact with anything (movers by their velocities, remembered points along the ray) the longest,
+    if it puts it off past the moment standing would be hit; else ``wheels`` unchanged.
+
+    Why: the arbiter hands over directions, which a differential drive reaches only after turning on the spot
+    (:func:`forward_speed` even stops the robot's straight motion so that it turns rather than drive into what it
+    turns from). A robot turning on the spot in a mover's path is hit however well it chose the direction: in
+    issue 35's traffic Samba collided in 4 runs of 4 with three movers crossing a corridor. A straight motion
+    needs no turn, so its time to collision is exact for the wheels."""
+    grid = p.grid(robot)
+    objects, valid = tick.objects, tick.valid
+    n_still = p.memory_points
+    grow = robot.radius + p.clearance
+    zero = am.VelocityGrid(4, 1, 1e-6)  # standing: any action of a vanishing speed
+    stand = am.collision_times(objects[n_still:, :2], objects[n_still:, 2:4], objects[n_still:, 4] + grow, zero,
+                               valid[n_still:])
+    t_stand = jnp.min(stand)
+    back = grid.directions // 2  # the grid's direction straight behind (θ = π)
+    straight = jnp.stack([tick.times[0], tick.times[back]])  # (2, n_speed): ahead, back
+    best = jnp.argmax(straight)
+    t_best = straight.reshape(-1)[best]
+    v = jnp.asarray(grid.speed_values())[best % grid.speeds] * jnp.where(best // grid.speeds == 0, 1.0, -1.0)
+    threatened = (t_stand < p.escape_s) & (t_best > t_stand)
+    return jnp.where(threatened, jnp.stack([v, v]), wheels)
 
 
 def build(params: SambaParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA, spec: str = "samba") -> Controller:

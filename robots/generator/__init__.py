@@ -41,12 +41,17 @@ class Family:
     name: str
     layout: Callable[..., Any]
     summary: str
+    #: ``overlay(rng, level, layout) -> Layout``: this family's features added to another family's layout, so that
+    #: ``"large+traffic:7"`` is a large world with traffic (:func:`family_of`); None: the family cannot be laid over.
+    overlay: Callable[..., Any] | None = None
 
 
 def _built_in() -> tuple[Family, ...]:
-    from robots.generator.families import blocked, clutter, corridor, maze, movers, traps
+    from robots.generator.families import (blocked, clutter, corridor, doors, large, maze, movers, niches, pillars,
+                                           shapes, slanted, traffic, traps)
 
-    return tuple(m.FAMILY for m in (corridor, traps, clutter, maze, movers, blocked))
+    return tuple(m.FAMILY for m in (corridor, traps, clutter, maze, movers, blocked, niches, traffic, pillars, shapes,
+                                    slanted, large, doors))
 
 
 def _check(family: Family) -> None:
@@ -57,7 +62,29 @@ def _check(family: Family) -> None:
 #: listed (:class:`robots.registry.Registry`).
 FAMILIES = Registry("family", "families", Family, _built_in, _check)
 
-_SPELLING = re.compile(rf"({NAME.pattern}):([^:]*)(?::([^:]*))?")
+_SPELLING = re.compile(rf"({NAME.pattern}(?:\+{NAME.pattern})*):([^:]*)(?::([^:]*))?")
+
+
+def family_of(name: str) -> Family | None:
+    """The family ``name``: a registered one, or a combination ``"A+B[+C...]"`` — A's layout with the features of
+    B (then C ...) laid over it by their ``overlay`` (``"large+traffic"``: a large world with traffic); None when a
+    part is unknown or cannot be laid over."""
+    parts = str(name).split("+")
+    if not all(p in FAMILIES for p in parts):
+        return None
+    if len(parts) == 1:
+        return FAMILIES[name]
+    base, over = FAMILIES[parts[0]], [FAMILIES[p] for p in parts[1:]]
+    if any(f.overlay is None for f in over):
+        return None
+
+    def layout(rng, level: float):
+        made = base.layout(rng, level)
+        for f in over:
+            made = f.overlay(rng, level, made)
+        return made
+
+    return Family(name, layout, f"{base.summary}; with " + "; with ".join(f.summary for f in over))
 
 
 def spelling(family: str, seed: int, difficulty: float | None = None) -> str:
@@ -70,7 +97,7 @@ def parse_spelling(text: str) -> tuple[str, int, float | None] | None:
     not of the form ``FAMILY:...`` with a known family. A known family with a bad seed or difficulty is an
     :class:`~ekm.errors.InputError` naming the spelling."""
     m = _SPELLING.fullmatch(str(text))
-    if m is None or m.group(1) not in FAMILIES:
+    if m is None or family_of(m.group(1)) is None:
         return None
     family, seed_text, level_text = m.groups()
     if not seed_text.isdigit() or not seed_text.isascii():
@@ -92,11 +119,13 @@ def generate(family: str, seed: int, difficulty: float | None = None):
     :class:`~robots.worldfile.Difficulty` filled in. Bad arguments raise :class:`~ekm.errors.InputError`."""
     import numbers
 
-    if family not in FAMILIES:
+    chosen = family_of(family)
+    if chosen is None:
         from robots.spelling import did_you_mean
 
         raise InputError(f"unknown world family {family!r}{did_you_mean(family, FAMILIES)} (families: "
-                         f"{', '.join(FAMILIES)})")
+                         f"{', '.join(FAMILIES)}; combined A+B where B can be laid over: "
+                         f"{', '.join(n for n, f in FAMILIES.all().items() if f.overlay)})")
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
         raise InputError(f"{family}: the seed must be a whole number >= 0, got {seed!r}")
     if difficulty is not None and (isinstance(difficulty, bool) or not isinstance(difficulty, numbers.Real)
@@ -104,5 +133,5 @@ def generate(family: str, seed: int, difficulty: float | None = None):
         raise InputError(f"{family}: the difficulty must be a number in [0, 1], got {difficulty!r}")
     from robots.generator.build import build
 
-    return build(FAMILIES[family], int(seed), None if difficulty is None else float(difficulty),
+    return build(chosen, int(seed), None if difficulty is None else float(difficulty),
                  spelling(family, int(seed), difficulty))

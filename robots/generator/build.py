@@ -139,6 +139,8 @@ class Symmetry:
         if doc.get("moving"):
             out["moving"] = [{"shape": self.shape(m["shape"], relative=True), "path": self.path(m["path"])}
                              for m in doc["moving"]]
+        if doc.get("events"):
+            out["events"] = [{**e, "add": [self.shape(s) for s in e["add"]]} for e in doc["events"]]
         x, y, theta = doc["start"]
         out["start"] = self.point((x, y)) + [self.angle(theta)]
         out["goal"] = self.point(doc["goal"])

@@ -102,3 +102,39 @@ def wall_with_door(a, b, at: float, width: float) -> list:
     u = unit_between(a, b)
     half = 0.5 * (width + T)
     return [wall(a, a + (at - half) * u), wall(a + (at + half) * u, b)]
+
+
+# ------------------------------------------------------------------------------------------- routes
+
+def route_of(doc: dict, known_only: bool = False):
+    """The :func:`robots.generator.reach.reach` of a layout's document (every static shape, or ``known_only`` the
+    planner's map): its ``route`` ``(k, 2)`` from start to goal; :class:`Retry` when there is none or the document
+    does not parse."""
+    from ekm.errors import InputError
+    from robots.generator.reach import reach
+    from robots.worldfile import parse_world
+
+    try:
+        world = parse_world({"name": "layout", **doc}, "layout")
+    except InputError:
+        raise Retry from None
+    found = reach(world, known_only=known_only)
+    if not found.solvable:
+        raise Retry
+    return world, found
+
+
+def along(route, s: float) -> tuple[np.ndarray, np.ndarray]:
+    """The point ``s`` metres along the polyline ``route`` ``(k, 2)`` and the unit direction of its leg there."""
+    route = np.asarray(route, float)
+    legs = np.diff(route, axis=0)
+    lengths = np.hypot(legs[:, 0], legs[:, 1])
+    k = int(np.clip(np.searchsorted(np.cumsum(lengths), s), 0, len(legs) - 1))
+    before = float(np.sum(lengths[:k]))
+    u = legs[k] / max(lengths[k], 1e-12)
+    return route[k] + (s - before) * u, u
+
+
+def polyline_length(route) -> float:
+    d = np.diff(np.asarray(route, float), axis=0)
+    return float(np.hypot(d[:, 0], d[:, 1]).sum())

@@ -43,3 +43,54 @@ def test_the_monitor_stops_a_robot_circling_in_place():
         if m.update(t, float(np.linalg.norm(p - checkpoint)), p):
             break
     assert t == pytest.approx(0.128 * 40)  # the first update at or after 5 s
+
+
+# --------------------------------------------------------------------------- issue 35: loops
+
+def square_loop(laps: float, side: float = 0.5, speed: float = 0.16, dt: float = 0.128):
+    """Positions every ``dt`` of a robot driving ``laps`` times round the square of ``side`` from (1, 1)
+    counter-clockwise at ``speed``: a loop of 4 x side = 2 m, one lap in 12.5 s at 0.16 m/s."""
+    corners = np.array([[1, 1], [1 + side, 1], [1 + side, 1 + side], [1, 1 + side]], float)
+    out = []
+    for k in range(int(laps * 4 * side / (speed * dt)) + 1):
+        s = (k * speed * dt) % (4 * side)
+        leg = int(s // side)
+        out.append(corners[leg] + (s - leg * side) * (corners[(leg + 1) % 4] - corners[leg]) / side)
+    return out
+
+
+def first_fired(monitor, path, checkpoint, dt=0.128):
+    for i, p in enumerate(path):
+        if monitor.update(dt * i, float(np.linalg.norm(p - checkpoint)), p):
+            return dt * i
+    return None
+
+
+def test_a_robot_scripted_round_a_2_m_loop_twice_is_stopped():
+    """Round a 2 m square twice at 0.16 m/s (25 s), the checkpoint at (3, 3): it comes closest at the far corner
+    (1.5, 1.5), 1 m into the first lap, and never closer. From the end of the first lap (2 m, 12.5 s) every metre is
+    on old ground, so with loop = 1.5 m the monitor fires 1.5 m later: at 3.5 m, 21.9 s, in the second lap. The time
+    rule alone (after = 20 s) waits for 20 s after the last new square, which the first lap ends on: 32.5 s, after
+    the two laps are over -- the loop the issue saw go on for the whole time limit."""
+    checkpoint, path = np.array([3.0, 3.0]), square_loop(2.0)
+    t = first_fired(TrapMonitor(20.0, 0.01, ground=0.05, loop=1.5), path, checkpoint)
+    assert t == pytest.approx(3.5 / 0.16, abs=0.6)
+    assert first_fired(TrapMonitor(20.0, 0.01, ground=0.05, loop=None), path, checkpoint) is None
+
+
+def test_a_scripted_long_detour_onto_new_ground_is_not_stopped():
+    """From (0, 0), 3 m straight away from the checkpoint at (3, 0), 0.3 m across, and 6 m back on the parallel
+    line to x = 3 (56 s at 0.16 m/s): the distance grows for 19 s, longer than after = 15 s, and the robot drives
+    9 m, six times the loop length, but every 5 cm square it enters is new -- never stopped."""
+    checkpoint = np.array([3.0, 0.0])
+    corners = [np.array(c, float) for c in ([0, 0], [-3, 0], [-3, 0.3], [3, 0.3])]
+    path = []
+    for a, b in zip(corners, corners[1:]):
+        n = int(np.linalg.norm(b - a) / (0.16 * 0.128))
+        path += [a + (b - a) * k / n for k in range(n)]
+    assert first_fired(TrapMonitor(15.0, 0.01, ground=0.05, loop=1.5), path, checkpoint) is None
+    # driving back over the outward line instead (the 0.3 m across squashed to a 1.9 s stop at (-3, 0)) is old
+    # ground, never closer than the start until x > 0: the monitor fires 1.5 m into it, at (3 + 0.3 + 1.5) / 0.16 s
+    back = [p * np.array([1, 0]) for p in path]
+    t = first_fired(TrapMonitor(15.0, 0.01, ground=0.05, loop=1.5), back, checkpoint)
+    assert t == pytest.approx(4.8 / 0.16, abs=0.6)

@@ -36,7 +36,8 @@ def ids(case):
 
 
 def test_the_families_in_order_each_with_a_one_line_description():
-    assert list(FAMILIES) == ["corridor", "traps", "clutter", "maze", "movers", "blocked"]
+    assert list(FAMILIES) == ["corridor", "traps", "clutter", "maze", "movers", "blocked", "niches", "traffic",
+                              "pillars", "shapes", "slanted", "large", "doors"]
     assert all(f.summary and "\n" not in f.summary for f in FAMILIES.all().values())
 
 
@@ -52,7 +53,7 @@ def test_a_generated_world_is_checked_solvable_and_labelled(case):
     assert (d.family, d.seed) == (family, seed) and 0.0 <= d.level <= 1.0
     if difficulty is not None:
         assert d.level == difficulty
-    assert all(0.8 - 1e-9 <= side <= 2.5 + 1e-9 for side in w.size)
+    assert all(0.8 - 1e-9 <= side <= (6.3 if family == "large" else 2.5) + 1e-9 for side in w.size)
     assert w.clearance(np.asarray(w.start[:2])) >= R and w.clearance(np.asarray(w.goal), include_moving=False) >= R
     assert d.straight_m >= 0.5 and d.route_ratio >= 1.0
     found = reach(w)
