@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from robots.generator import Family
-from robots.generator.layout import R, T, Layout, Retry, along, polyline_length, route_of, wall, wall_with_door
+from robots.generator.layout import R, T, Layout, Retry, along, polyline_length, route_of, wall_with_door
 from robots.geometry import segment_distance
 
 TOP_SPEED = 0.16  # m/s: the Khepera's c*; the fastest movers are nearly as fast

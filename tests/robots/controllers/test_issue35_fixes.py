@@ -5,7 +5,6 @@ import math
 
 import jax.numpy as jnp
 import numpy as np
-import pytest
 
 from robots.controllers import samba
 from robots.controllers.base import Observation
