@@ -69,8 +69,9 @@ class Game:
     Parameters
     ----------
     field, ball : the pitch. ``robots`` : int, how many robots (robot i plays side ``i % 2``).
-    seeds : sequence of int, one per robot: its motor and sensor noise. ``params`` : the robot, or one per
-    robot (:mod:`robots.robotfile`; they must share the physics sub-step ``dt`` and the control period).
+    seeds : sequence of int, one per robot: its motor and sensor noise.
+    params : RobotParams, or a sequence of them, one per robot (:mod:`robots.robotfile`); they must share the
+        physics sub-step ``dt`` and the control period.
     kickoff : sequence of ``(3,)`` poses, one per robot (default :func:`kickoff_poses` for two robots).
     rule : ``"centre"`` or ``"sahota"`` (:mod:`robots.soccer.referee`).
     stall_s, stall_m : a ball that stays within ``stall_m`` m for ``stall_s`` s is dead: kick-off again.
