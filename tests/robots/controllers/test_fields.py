@@ -1,5 +1,7 @@
 """Neural fields (robots.controllers.fields, Eq. 5.1–5.6), and the extended form's commitment and guard."""
 
+import math
+
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -8,6 +10,7 @@ import pytest
 from ekm import indirect
 from ekm.config import EKMConfig
 from robots.controllers import fields
+from robots.controllers.fields import FieldParams, gap_clearance
 from robots.params import KHEPERA, LONG_RANGE
 from tests.robots.controllers.observations import observation
 
@@ -101,3 +104,31 @@ def test_the_fields_guard_slows_the_wheels_to_half_a_second_from_what_is_ahead_a
                                                           0.025, p)), np.float32([0.10, 0.14]))
     slow = jnp.asarray([0.04, 0.05], jnp.float32)
     np.testing.assert_array_equal(np.asarray(fields.guard(slow, u, jnp.asarray([True]), 0.025, p)), np.asarray(slow))
+
+
+# the clearance beside a remembered obstacle follows the sensed gap (fields:gap_share, an extension)
+GAP_R = KHEPERA.radius
+
+
+def across(gap, d=0.1):
+    """Two obstacle inputs (α, d from the body surface) straight ahead of the robot's centre, ``gap`` apart
+    (surface points at (d + GAP_R, ±gap / 2) in the robot frame), one either side of a target at α = 0."""
+    r = math.hypot(d + GAP_R, gap / 2)
+    a = math.atan2(gap / 2, d + GAP_R)
+    return jnp.array([[a, r - GAP_R], [-a, r - GAP_R]], jnp.float32)
+
+
+def test_the_clearance_is_a_quarter_of_the_room_a_narrow_gap_leaves_at_most_1_cm():
+    p = FieldParams()
+    valid = jnp.array([True, True])
+    # a 7.5 cm niche leaves the 5 cm body 2.5 cm of room: a quarter of it, 6.25 mm, instead of 1 cm
+    np.testing.assert_allclose(gap_clearance(across(0.075), valid, 0.0, GAP_R, p), [0.00625, 0.00625], atol=1e-6)
+    # a 20 cm doorway: 1/4 of 15 cm is past the 1 cm cap
+    np.testing.assert_allclose(gap_clearance(across(0.2), valid, 0.0, GAP_R, p), [0.01, 0.01], atol=1e-7)
+    # a gap narrower than the body: no clearance at all (the planner does not send the robot there)
+    np.testing.assert_allclose(gap_clearance(across(0.04), valid, 0.0, GAP_R, p), [0.0, 0.0], atol=1e-7)
+    # both on one side of the target's direction: no gap across the way, the fixed 1 cm
+    np.testing.assert_allclose(gap_clearance(across(0.075), valid, 1.0, GAP_R, p), [0.01, 0.01], atol=1e-7)
+    # an empty slot is no side of a gap; gap_share = 0 is the fixed clearance of before
+    np.testing.assert_allclose(gap_clearance(across(0.075), jnp.array([True, False]), 0.0, GAP_R, p), [0.01, 0.01])
+    np.testing.assert_allclose(gap_clearance(across(0.075), valid, 0.0, GAP_R, FieldParams(gap_share=0.0)), [0.01, 0.01])

@@ -259,3 +259,33 @@ def test_samba_never_stands_beside_a_post_while_a_free_action_brings_it_closer()
     assert rec.reached and stop <= 1
     _, stop = longest_stop("samba:closer=false")
     assert stop * KHEPERA.avoid_period > 2.0
+
+
+# Samba steps out of a declared mover's way (samba:escape_s)
+def mover_observation(markers):
+    return Observation(t=np.float32(0), ir=np.full(12, np.inf, np.float32), target=np.array([math.pi / 2, 0.3],
+                                                                                            np.float32),
+                       target_id=np.int32(0), final=np.bool_(True), pose=np.array([0.5, 0.5, 0.0], np.float32),
+                       target_velocity=np.zeros(2, np.float32), markers=np.asarray(markers, np.float32).reshape(-1, 5))
+
+
+def test_samba_steps_straight_out_of_a_movers_way():
+    """The robot at (0.5, 0.5) facing +x, its checkpoint to its left (α = 90°, so it would turn on the spot). A
+    mover of radius 2.5 cm 12 cm to its left comes at it at 0.1 m/s: standing, the discs (grown by the 1 cm
+    clearance: 6 cm) meet after (0.12 − 0.06) / 0.1 = 0.6 s, within escape_s = 1.5 s. Driving straight ahead at v,
+    the nearest approach of (−v t, 0.12 − 0.1 t) is 0.12 v / sqrt(v² + 0.01): 4.5 cm at 0.04 m/s (hit), 6.2 cm at
+    0.06 m/s (never hit). Of the straight motions never hit, the grid's first (the slowest, 0.06 m/s) is taken:
+    both wheels 0.06 m/s. Without the mover, or with escape_s = 0, Samba's own command stands."""
+    p = samba.SambaParams()
+    mover = [0.5, 0.62, 0.0, -0.1, 0.025]
+    _, wheels = samba.step(samba.init(p), mover_observation([mover]), p=p, robot=KHEPERA)
+    np.testing.assert_allclose(np.asarray(wheels), [0.06, 0.06], atol=1e-6)
+    still = samba.step(samba.init(p), mover_observation([]), p=p, robot=KHEPERA)[1]
+    off = samba.SambaParams(escape_s=0.0)
+    assert not np.allclose(np.asarray(still), [0.06, 0.06])
+    assert not np.allclose(np.asarray(samba.step(samba.init(off), mover_observation([mover]), p=off, robot=KHEPERA)[1]),
+                           [0.06, 0.06])
+    # a mover passing by far off (it would meet the standing robot only after 3 s) changes nothing
+    far = [0.5, 0.86, 0.0, -0.1, 0.025]
+    np.testing.assert_allclose(np.asarray(samba.step(samba.init(p), mover_observation([far]), p=p, robot=KHEPERA)[1]),
+                               np.asarray(still), atol=1e-6)
