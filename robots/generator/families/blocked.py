@@ -52,6 +52,15 @@ def _door_wall(rng, level: float, n_block: int) -> Layout:
 def _ring(rng, level: float) -> Layout:
     nx, ny = (2, 2) if level < 0.35 else [(3, 2), (2, 3), (3, 3)][int(rng.integers(3))]
     s = max(rng.uniform(0.35, 0.5), ARENA[0] / min(nx, ny))
+    doc, candidates = ring_of_rooms(rng, nx, ny, s, (0.1, 0.16), 0.04)
+    return Layout(doc, blockers=1, candidates=candidates)
+
+
+def ring_of_rooms(rng, nx: int, ny: int, s: float, door: tuple[float, float], jitter: float) -> tuple[dict, list]:
+    """``nx`` × ``ny`` rooms of side ``s`` (m) joined in a ring by doors ``door`` (m, a uniform range of widths) wide
+    — two routes between any two rooms — with the start and the goal in rooms opposite on the ring, each within
+    ``jitter`` m of its room's centre: the world's document, and for each door an unforeseen box that would shut
+    it (``blocked`` and ``doors`` use them). Raises :class:`Retry` for a start and goal under 0.5 m apart."""
     ring = [(i, 0) for i in range(nx)] + [(nx - 1, j) for j in range(1, ny)] \
         + [(i, ny - 1) for i in range(nx - 2, -1, -1)] + [(0, j) for j in range(ny - 2, 0, -1)]
     linked = {tuple(sorted([a, b])) for a, b in zip(ring, ring[1:] + ring[:1])}
@@ -59,19 +68,18 @@ def _ring(rng, level: float) -> Layout:
     for e in room_edges(nx, ny):
         a, b = edge_line(e, s)
         if e in linked:
-            at, dw = rng.uniform(0.3, 0.7) * s, rng.uniform(0.1, 0.16)
+            at, dw = rng.uniform(0.3, 0.7) * s, rng.uniform(*door)
             walls += wall_with_door(a, b, at, dw)
             u = unit_between(a, b)
             candidates.append(_blocker(rng, a + at * u, math.atan2(u[1], u[0]), dw))
         else:
             walls.append(wall(a, b))
-    start = (np.array(ring[0]) + 0.5) * s + rng.uniform(-0.04, 0.04, 2)
-    goal = (np.array(ring[len(ring) // 2]) + 0.5) * s + rng.uniform(-0.04, 0.04, 2)
+    start = (np.array(ring[0]) + 0.5) * s + rng.uniform(-jitter, jitter, 2)
+    goal = (np.array(ring[len(ring) // 2]) + 0.5) * s + rng.uniform(-jitter, jitter, 2)
     if math.dist(start, goal) < 0.5:
         raise Retry
-    doc = {"size": [nx * s, ny * s], "walls": walls, "start": [*start, rng.uniform(-math.pi, math.pi)],
-           "goal": list(goal), "wall_thickness": T}
-    return Layout(doc, blockers=1, candidates=candidates)
+    return {"size": [nx * s, ny * s], "walls": walls, "start": [*start, rng.uniform(-math.pi, math.pi)],
+            "goal": list(goal), "wall_thickness": T}, candidates
 
 
 def _blocker(rng, centre, angle: float, dw: float) -> dict:

@@ -7,11 +7,9 @@ import math
 import numpy as np
 
 from robots.generator import Family
-from robots.generator.families.blocked import _blocker
-from robots.generator.layout import T, Layout, Retry, along, polyline_length, route_of, unit_between, wall, \
-    wall_with_door
+from robots.generator.families.blocked import _blocker, ring_of_rooms
+from robots.generator.layout import T, Layout, Retry, along, as_shape, polyline_length, route_of, wall
 from robots.generator.shapes import route_passes
-from robots.generator.layout import as_shape
 
 TOP_SPEED = 0.16  # m/s: the Khepera's c*; a door shuts before the fastest robot could reach it
 
@@ -64,29 +62,8 @@ def _door_wall(rng, level: float):
 
 
 def _ring(rng, level: float):
-    from robots.generator.layout import edge_line, room_edges
-
     nx, ny = (2, 2) if level < 0.5 else (3, 2)
-    s = rng.uniform(0.4, 0.55)
-    ring = [(i, 0) for i in range(nx)] + [(nx - 1, j) for j in range(1, ny)] \
-        + [(i, ny - 1) for i in range(nx - 2, -1, -1)] + [(0, j) for j in range(ny - 2, 0, -1)]
-    linked = {tuple(sorted([a, b])) for a, b in zip(ring, ring[1:] + ring[:1])}
-    walls, candidates = [], []
-    for e in room_edges(nx, ny):
-        a, b = edge_line(e, s)
-        if e in linked:
-            at, dw = rng.uniform(0.3, 0.7) * s, rng.uniform(0.12, 0.18)
-            walls += wall_with_door(a, b, at, dw)
-            u = unit_between(a, b)
-            candidates.append(_blocker(rng, a + at * u, math.atan2(u[1], u[0]), dw))
-        else:
-            walls.append(wall(a, b))
-    start = (np.array(ring[0]) + 0.5) * s + rng.uniform(-0.05, 0.05, 2)
-    goal = (np.array(ring[len(ring) // 2]) + 0.5) * s + rng.uniform(-0.05, 0.05, 2)
-    if math.dist(start, goal) < 0.5:
-        raise Retry
-    return {"size": [nx * s, ny * s], "walls": walls, "start": [*start, rng.uniform(-math.pi, math.pi)],
-            "goal": list(goal), "wall_thickness": T}, candidates
+    return ring_of_rooms(rng, nx, ny, rng.uniform(0.4, 0.55), (0.12, 0.18), 0.05)
 
 
 FAMILY = Family("doors", layout, "rooms whose door on the shortest route shuts during the run, another route open")
