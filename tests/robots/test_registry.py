@@ -3,6 +3,7 @@ own first, names checked, a built-in name never taken, a name registered again r
 thing, entry points that fail in one line, and what a job carries to its worker process. A family of one's own
 makes worlds by its spelling like the package's."""
 
+import dataclasses
 import pickle
 from dataclasses import dataclass
 
@@ -136,6 +137,8 @@ def test_a_robot_of_one_s_own_drives_by_its_name_and_is_checked_as_a_robot_file(
     assert listed["heavy"] == "added" and listed["khepera"] == "built in"
     with pytest.raises(InputError, match="robot wobbly: wheel_base: must be > 0, got 0"):
         ekm.register_robot("wobbly", {"wheel_base": 0})
+    with pytest.raises(InputError, match="robot thin: wheel_base: must be > 0, got 0"):  # made in Python, checked
+        ekm.register_robot(dataclasses.replace(ekm.robot(), name="thin", wheel_base=0.0))
     with pytest.raises(InputError, match="robot 'worn-wheel': the name of a built-in robot"):
         ekm.register_robot("worn-wheel", {"wheel_gain": [0.8, 1.0]})
     carried = pickle.loads(pickle.dumps(added_here()))
