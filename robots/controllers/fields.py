@@ -70,6 +70,8 @@ from ekm import indirect
 from ekm.config import EKMConfig
 from ekm.angles import wrap, wrap_near
 from ekm.kohonen import relative, winner
+from robots.controllers import actionmaps as am
+from robots.controllers import escape as esc
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles
 from robots.params import KHEPERA, RobotParams
@@ -115,6 +117,12 @@ class FieldParams:
                                                           "obstacle in the way of the wheels' motion (0: no guard)"})
     guard_clearance: float = field(default=0.01, metadata={"help": "form=extended: m beside the body within which a "
                                                                   "remembered obstacle is in the way of the wheels"})
+    mover_ahead_s: float = field(default=0.5, metadata={
+        "help": "form=extended: s ahead along its velocity up to which a declared mover counts as an obstacle where "
+                "it will be, as well as where it is (0: movers only as the IR sees them)"})
+    escape_s: float = field(default=1.5, metadata={
+        "help": "form=extended: a declared mover that would hit the robot standing where it is within this many s: it "
+                "drives straight ahead or back out of the mover's way (0: never), s"})
     gap_share: float = field(default=0.25, metadata={
         "help": "form=extended: the clearance beside a remembered obstacle is at most this share of the room the "
                 "sensed gap across the way to the target leaves the body (0: fixed)"})
@@ -123,9 +131,10 @@ class FieldParams:
         for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if self.clearance < 0 or self.guard_s < 0 or self.mover_near < 0 or self.gap_share < 0:
-            raise ValueError(f"clearance, guard_s and mover_near must be >= 0, got {self.clearance}, {self.guard_s}, "
-                             f"{self.mover_near}")
+        if min(self.clearance, self.guard_s, self.mover_near, self.gap_share, self.escape_s, self.mover_ahead_s) < 0:
+            raise ValueError("clearance, guard_s, mover_near, gap_share, escape_s and mover_ahead_s must be >= 0, got "
+                             f"{self.clearance}, {self.guard_s}, {self.mover_near}, {self.gap_share}, {self.escape_s}, "
+                             f"{self.mover_ahead_s}")
         if self.memory_points < 1:
             raise ValueError(f"memory_points must be >= 1, got {self.memory_points}")
 
@@ -189,6 +198,26 @@ def gap_clearance(u_obs, valid, target_alpha, radius: float, p: FieldParams):
     return jnp.clip(p.gap_share * (gap - 2 * radius), 0.0, p.clearance)
 
 
+#: How many places along its path ahead (now, and evenly up to ``mover_ahead_s``) a declared mover is put.
+MOVER_PLACES = 3
+
+
+def mover_inputs(markers, pose, radius: float, ahead_s: float):
+    """Obstacle inputs u = (α, d) ``(k · MOVER_PLACES, 2)`` of the declared movers ``markers`` ``(k, 5)`` (x, y, vx,
+    vy, radius; world frame) where each is now and where it will be, at its velocity, evenly up to ``ahead_s``
+    seconds ahead — d from the robot's surface to the mover's — and each one's radius ``(k · MOVER_PLACES,)``,
+    which :func:`fields` adds to the clearance so that the cone it blocks is the mover's disc's
+    (``form=extended``, an extension: the thesis's fields see a mover only by IR, and only where it was)."""
+    markers = jnp.asarray(markers, jnp.float32).reshape(-1, 5)
+    when = jnp.linspace(0.0, ahead_s, MOVER_PLACES)
+    at = markers[:, None, :2] + when[None, :, None] * markers[:, None, 2:4]  # (k, places, 2)
+    dx, dy = at[..., 0] - pose[0], at[..., 1] - pose[1]
+    r = jnp.broadcast_to(markers[:, 4:5], dx.shape)
+    alpha = wrap(jnp.arctan2(dy, dx) - pose[2])
+    d = jnp.maximum(jnp.hypot(dx, dy) - radius - r, 0.0)
+    return jnp.stack([alpha, d], axis=-1).reshape(-1, 2), r.reshape(-1)
+
+
 def obstacle_inputs(readings, angles):
     """u_j = (φ_j, r_j) ``(h, 2)`` of each sensor and whether it sees anything ``(h,)``."""
     seen = jnp.isfinite(readings)
@@ -226,33 +255,48 @@ def init(p: FieldParams) -> FieldState:
 def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg: EKMConfig, *, radius: float,
            range_m: float) -> tuple[FieldState, Tick, jax.Array]:
     """Eq. 5.1–5.3 and 5.6 for one tick. ``form=extended`` first adds the tick's readings to the remembered
-    obstacles, then builds b from those nearer than the target (:func:`body_field`). Also returns, for
-    :func:`committed_winner`, which of the neurons' directions and (last) the target's the remembered
-    obstacles block (:func:`memory.blocked_along`; none for ``form=thesis``) ``(N² + 1,)``."""
+    obstacles (those on a declared mover left out while ``mover_ahead_s`` places the movers, :func:`mover_inputs`),
+    then builds b from those nearer than the target (:func:`body_field`). Also returns, for
+    :func:`committed_winner`, which of the neurons' directions and (last) the target's are blocked
+    (:func:`memory.blocked_along`; none for ``form=thesis``) ``(3, N² + 1)``: row 0 by anything nearer than the
+    target, except that the target's own direction counts still obstacles only (a mover passes: the robot does
+    not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a mover."""
     s = winner(ekm.w, obs.target, cfg)
     g_a = target_field(ekm.w, s, p, cfg)
     if p.form == "extended":
-        memory = mem.update(state.memory, obs.pose, obs.ir, angles, obs.t, radius=radius, range_m=range_m,
+        ir = mem.off_movers(obs.pose, obs.ir, angles, obs.markers, radius=radius) if p.mover_ahead_s > 0 else obs.ir
+        memory = mem.update(state.memory, obs.pose, ir, angles, obs.t, radius=radius, range_m=range_m,
                             merge=p.merge, forget_after=p.memory_s)
         state = state._replace(memory=memory)
         u_obs, valid = mem.egocentric(memory, obs.pose, radius=radius)
+        grown = jnp.zeros_like(u_obs[:, :1])  # m each obstacle adds to the clearance: 0 for a point
+        if p.mover_ahead_s > 0:
+            u_mov, r_mov = mover_inputs(obs.markers, obs.pose, radius, p.mover_ahead_s)
+            u_obs, grown = jnp.concatenate([u_obs, u_mov]), jnp.concatenate([grown, r_mov[:, None]])
+            valid = jnp.concatenate([valid, jnp.ones(u_mov.shape[0], bool)])
         valid = valid & (u_obs[:, 1] < obs.target[1])
         directions = jnp.append(ekm.w[:, 0], obs.target[0])
 
-        def per_neuron(u, v):  # on the points that count only (most slots are empty or beyond the target)
-            clear = gap_clearance(u, v, obs.target[0], radius, p)
-            return (body_field(ekm.w, u, v, radius, p, cfg, clear),
-                    mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=clear),
+        def per_neuron(ug, v):  # on the points that count only (most slots are empty or beyond the target)
+            u, r = ug[:, :2], ug[:, 2]
+            clear = jnp.where(r > 0, p.clearance, gap_clearance(u, v & (r == 0), obs.target[0], radius, p)) + r
+            blocked = mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=clear)
+            # the way to the target counts as blocked (the commitment to a side) for still obstacles only: a mover
+            # passes, and going round it as round a wall took the robot round the room (issue 32)
+            way = mem.blocked_along(directions[-1:], obs.target[1], u, v & (r == 0), radius=radius, clearance=clear)
+            return (body_field(ekm.w, u, v, radius, p, cfg, clear), blocked.at[-1].set(way[0]),
                     mem.blocked_along(directions, jnp.minimum(obs.target[1], p.near), u, v, radius=radius,
-                                      clearance=0.0))
+                                      clearance=r),
+                    mem.blocked_along(directions, obs.target[1], u, v & (r > 0), radius=radius, clearance=clear))
 
-        b, blocked, blocked_near = mem.over_packed(per_neuron, u_obs, valid)
-        blocked = jnp.stack([blocked, blocked_near])
+        b, blocked, blocked_near, by_mover = mem.over_packed(per_neuron, jnp.concatenate([u_obs, grown], axis=1),
+                                                             valid)
+        blocked = jnp.stack([blocked, blocked_near, by_mover])
     else:
         u_obs, valid = obstacle_inputs(obs.ir, angles)
         winners = jax.vmap(lambda u: winner(ekm.w, u, cfg))(u_obs)
         b = obstacle_field(ekm.w, winners, valid, p, cfg)
-        blocked = jnp.zeros((2, ekm.w.shape[0] + 1), bool)
+        blocked = jnp.zeros((3, ekm.w.shape[0] + 1), bool)
     return state, Tick(s, g_a, b, g_a - b, u_obs, valid), blocked
 
 
@@ -287,21 +331,25 @@ def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMCon
     return jnp.where(side != 0, k_side, k_open), side
 
 
-@partial(jax.jit, static_argnames=("cfg", "p", "radius", "range_m"))
+@partial(jax.jit, static_argnames=("cfg", "p", "radius", "range_m", "max_speed"))
 def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p: FieldParams, radius: float,
-         range_m: float):
+         range_m: float, max_speed: float = KHEPERA.max_wheel_speed):
     """One tick of the cooperative EKMs: winner k of a = G_a − b (Eq. 5.2, 5.4) and its command (Eq. 5.5)."""
     state, f, blocked = fields(state, ekm, obs, angles, p, cfg, radius=radius, range_m=range_m)
     k = jnp.argmax(f.a)
     if p.form == "extended" and p.commit:
         k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked[0], p, cfg,
-                                   direct=~movers_near(obs, radius, p.mover_near), blocked_near=blocked[1, :-1])
+                                   direct=~movers_near(obs, radius, p.mover_near) & ~blocked[2, -1],
+                                   blocked_near=blocked[1, :-1])
         state = state._replace(side=side)
     u = jnp.where(k == f.s, obs.target, ekm.w[k])  # Eq. 5.5: M_k u_p only for k = s, else M_k w_k
     c = indirect.command(ekm, u, k, cfg)
-    if p.form == "extended" and p.guard_s > 0:
-        u_still, still = mem.egocentric(state.memory, obs.pose, radius=radius)
-        c = guard(c, u_still, still & ~mem.near_movers(state.memory.points, obs.markers), radius, p)
+    if p.form == "extended" and (p.guard_s > 0 or p.escape_s > 0):
+        still = jnp.isfinite(state.memory.seen) & ~mem.near_movers(state.memory.points, obs.markers)
+        if p.guard_s > 0:
+            c = guard(c, mem.egocentric(state.memory, obs.pose, radius=radius)[0], still, radius, p)
+        if p.escape_s > 0:
+            c = out_of_the_way(c, state.memory.points, still, obs, radius, max_speed, p)
     return state._replace(s=f.s.astype(jnp.int32), k=k.astype(jnp.int32)), c
 
 
@@ -327,10 +375,35 @@ def guard(c, u_obs, valid, radius: float, p: FieldParams):
     return jnp.where(jnp.abs(v) > limit, jnp.stack([slowed - turn, slowed + turn]), c)
 
 
+def out_of_the_way(c, points, still, obs: Observation, radius: float, max_speed: float, p: FieldParams):
+    """The wheel command ``c`` ``(2,)``, or — when a declared mover would hit the robot standing within ``escape_s``
+    — the straight motion ahead or back that puts the first contact off the longest (:mod:`~robots.controllers.
+    escape`, shared with Samba; the remembered ``points`` ``(K, 2)`` that are ``still`` count along the ray).
+    Why: the fields choose a displacement the wheels reach along an arc that starts with a turn; the e-puck, wider
+    and slower than the Khepera, turning in the doorway of three-rooms-moving was hit by the circling mover in
+    10 runs of 10 (issue 32)."""
+    pose = jnp.asarray(obs.pose, jnp.float32)
+    pts = esc.to_robot(points - pose[:2], pose[2])
+    objects = jnp.concatenate([jnp.concatenate([pts, jnp.zeros_like(pts), jnp.zeros_like(pts[:, :1])], axis=1),
+                               esc.markers_to_robot(obs.markers, pose)], axis=0)
+    markers = objects.shape[0] - points.shape[0]
+    valid = jnp.concatenate([still, jnp.ones(markers, bool)])
+    grid = am.VelocityGrid(4, ESCAPE_SPEEDS, max_speed)
+    grow = radius + p.clearance
+    n = points.shape[0]
+    return esc.escape(c, esc.standing_time(objects, valid, n, grow), esc.straight_times(objects, valid, n, grow, grid),
+                      grid, p.escape_s)
+
+
+#: Speeds (evenly up to the robot's top speed) among which :func:`out_of_the_way` picks, as Samba's grid has.
+ESCAPE_SPEEDS = 8
+
+
 def build(params: FieldParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPERA, spec: str = "fields") -> Controller:
     """Neural fields over the indirect map ``ekm`` (one trial) on ``robot``."""
     sensors = robot.short_range if params.sensors == "short" else robot.long_range
     angles = jnp.asarray(sensor_angles(sensors))
-    run = partial(step, ekm=ekm, angles=angles, cfg=cfg, p=params, radius=robot.radius, range_m=sensors.range_m)
+    run = partial(step, ekm=ekm, angles=angles, cfg=cfg, p=params, radius=robot.radius, range_m=sensors.range_m,
+                  max_speed=robot.max_wheel_speed)
     return Controller(name="fields", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
                       robot=robot)

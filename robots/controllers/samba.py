@@ -60,6 +60,7 @@ import jax.numpy as jnp
 
 from ekm.angles import wrap
 from robots.controllers import actionmaps as am
+from robots.controllers import escape as esc
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles, velocity_to_wheels
 from robots.params import KHEPERA, RobotParams
@@ -148,12 +149,6 @@ def init(p: SambaParams) -> SambaState:
     return SambaState(mem.empty(p.memory_points), jnp.asarray(jnp.nan, jnp.float32))
 
 
-def _to_robot(v, theta):
-    """World-frame vectors ``(..., 2)`` in the frame of a robot heading ``theta``."""
-    c, s = jnp.cos(theta), jnp.sin(theta)
-    return jnp.stack([c * v[..., 0] + s * v[..., 1], -s * v[..., 0] + c * v[..., 1]], axis=-1)
-
-
 def bind(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams):
     """Object markers (step 1 of the module docstring): the memory after this tick's IR returns (those on a
     declared mover left out) and every obstacle marker in the robot frame, ``(n, 5)`` and ``valid`` ``(n,)``."""
@@ -165,10 +160,9 @@ def bind(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     readings = mem.off_movers(pose, ir, angles, markers, radius=robot.radius)
     memory = mem.update(state.memory, pose, readings, angles, obs.t, radius=robot.radius, range_m=sensors.range_m,
                         merge=p.merge, forget_after=p.memory_s)
-    pts = _to_robot(memory.points - pose[:2], pose[2])
+    pts = esc.to_robot(memory.points - pose[:2], pose[2])
     still = jnp.concatenate([pts, jnp.zeros_like(pts), jnp.zeros_like(pts[:, :1])], axis=1)
-    moving = jnp.concatenate([_to_robot(markers[:, :2] - pose[:2], pose[2]), _to_robot(markers[:, 2:4], pose[2]),
-                              markers[:, 4:5]], axis=1)
+    moving = esc.markers_to_robot(markers, pose)
     objects = jnp.concatenate([still, moving], axis=0)
     valid = jnp.concatenate([jnp.isfinite(memory.seen), jnp.ones(markers.shape[0], bool)])
     return memory, objects, valid
@@ -180,7 +174,7 @@ def goto_map(obs: Observation, p: SambaParams, robot: RobotParams):
     grid = p.grid(robot)
     alpha, d = obs.target[0], obs.target[1]
     pos = d * jnp.stack([jnp.cos(alpha), jnp.sin(alpha)])
-    vel = _to_robot(jnp.asarray(obs.target_velocity, jnp.float32), obs.pose[2])
+    vel = esc.to_robot(jnp.asarray(obs.target_velocity, jnp.float32), obs.pose[2])
     moving = jnp.asarray(obs.final) & (jnp.sum(vel * vel) > 0)
     if p.goto == "osa":
         goto = am.osa(pos, vel, grid, radius=jnp.where(moving, robot.radius, 0.0), full=p.full_s, tau=p.tau_s)
@@ -245,7 +239,7 @@ def closer_when_stuck(i, j, go, times, obs: Observation, p: SambaParams, grid: a
     less the marker's own speed away; a fixed checkpoint keeps the Goto map's speed limit (d / ``brake_s``), so
     at the goal, where no speed is left, the robot still stops. Returns ``(i, j, go)``."""
     alpha = obs.target[0]
-    vel = _to_robot(jnp.asarray(obs.target_velocity, jnp.float32), obs.pose[2])
+    vel = esc.to_robot(jnp.asarray(obs.target_velocity, jnp.float32), obs.pose[2])
     away = vel[0] * jnp.cos(alpha) + vel[1] * jnp.sin(alpha)
     angles, speeds = jnp.asarray(grid.angles()), jnp.asarray(grid.speed_values())
     closing = speeds[None, :] * jnp.cos(angles[:, None] - alpha) - away  # (n_dir, n_speed)
@@ -293,31 +287,14 @@ def step(state: SambaState, obs: Observation, *, p: SambaParams, robot: RobotPar
 
 
 def escape(wheels, tick: Tick, p: SambaParams, robot: RobotParams = KHEPERA):
-    """The wheel command when a declared mover would hit the robot where it stands within ``escape_s`` (an
-    extension, issue 35): the straight motion — ahead or back, at any of the grid's speeds — that puts off the
-    first contact with anything (movers by their velocities, remembered points along the ray) the longest,
-    if it puts it off past the moment standing would be hit; else ``wheels`` unchanged.
-
-    Why: the arbiter hands over directions, which a differential drive reaches only after turning on the spot
-    (:func:`forward_speed` even stops the robot's straight motion so that it turns rather than drive into what it
-    turns from). A robot turning on the spot in a mover's path is hit however well it chose the direction: in
-    issue 35's traffic Samba collided in 4 runs of 4 with three movers crossing a corridor. A straight motion
-    needs no turn, so its time to collision is exact for the wheels."""
+    """The wheel command when a declared mover would hit the robot where it stands within ``escape_s``: the
+    straight motion that puts the first contact off the longest (:mod:`~robots.controllers.escape`, an extension,
+    issue 35; its times straight ahead and back are the Avoid map's own). In issue 35's traffic Samba collided in
+    4 runs of 4 with three movers crossing a corridor, turning on the spot in a mover's path."""
     grid = p.grid(robot)
-    objects, valid = tick.objects, tick.valid
-    n_still = p.memory_points
-    grow = robot.radius + p.clearance
-    zero = am.VelocityGrid(4, 1, 1e-6)  # standing: any action of a vanishing speed
-    stand = am.collision_times(objects[n_still:, :2], objects[n_still:, 2:4], objects[n_still:, 4] + grow, zero,
-                               valid[n_still:])
-    t_stand = jnp.min(stand)
-    back = grid.directions // 2  # the grid's direction straight behind (θ = π)
-    straight = jnp.stack([tick.times[0], tick.times[back]])  # (2, n_speed): ahead, back
-    best = jnp.argmax(straight)
-    t_best = straight.reshape(-1)[best]
-    v = jnp.asarray(grid.speed_values())[best % grid.speeds] * jnp.where(best // grid.speeds == 0, 1.0, -1.0)
-    threatened = (t_stand < p.escape_s) & (t_best > t_stand)
-    return jnp.where(threatened, jnp.stack([v, v]), wheels)
+    t_stand = esc.standing_time(tick.objects, tick.valid, p.memory_points, robot.radius + p.clearance)
+    straight = jnp.stack([tick.times[0], tick.times[grid.directions // 2]])  # θ = 0 and θ = π
+    return esc.escape(wheels, t_stand, straight, grid, p.escape_s)
 
 
 def build(params: SambaParams, ekm=None, cfg=None, robot: RobotParams = KHEPERA, spec: str = "samba") -> Controller:

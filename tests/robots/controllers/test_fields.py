@@ -132,3 +132,45 @@ def test_the_clearance_is_a_quarter_of_the_room_a_narrow_gap_leaves_at_most_1_cm
     # an empty slot is no side of a gap; gap_share = 0 is the fixed clearance of before
     np.testing.assert_allclose(gap_clearance(across(0.075), jnp.array([True, False]), 0.0, GAP_R, p), [0.01, 0.01])
     np.testing.assert_allclose(gap_clearance(across(0.075), valid, 0.0, GAP_R, FieldParams(gap_share=0.0)), [0.01, 0.01])
+
+
+# Declared movers: where they will be (mover_ahead_s) and out of their way (escape_s)
+def test_a_mover_is_placed_where_it_is_and_where_it_will_be():
+    """mover_inputs by hand: the robot (radius 2.5 cm) at the origin facing +y; a mover of radius 2 cm at (0, 1)
+    coming at it at 0.1 m/s. Over 1 s ahead, in three places: now, after 0.5 s and after 1 s, straight ahead
+    (α = 0) at 1 − 0.025 − 0.02 = 0.955 m, then 0.905 and 0.855 m from surface to surface, each of radius 0.02."""
+    u, r = fields.mover_inputs(np.array([[0.0, 1.0, 0.0, -0.1, 0.02]], np.float32),
+                               np.array([0.0, 0.0, np.pi / 2], np.float32), 0.025, 1.0)
+    np.testing.assert_allclose(np.asarray(u), [[0.0, 0.955], [0.0, 0.905], [0.0, 0.855]], atol=1e-6)
+    np.testing.assert_allclose(np.asarray(r), [0.02, 0.02, 0.02])
+
+
+def test_a_mover_on_its_way_closes_the_direction_it_will_cross(signed_map):
+    """The checkpoint 30 cm straight ahead, nothing sensed; a mover 20 cm ahead and 10 cm to the left crossing the
+    way at 0.1 m/s to the right. Where it is, it does not block the way straight ahead (10 cm off the line; the
+    body and clearance need 2.5 + 2.5 + 1 = 6 cm); in a second it is on the line, so with mover_ahead_s = 1 the
+    target's direction is inhibited and the winner turns off it — with mover_ahead_s = 0 the robot goes straight."""
+    ekm, cfg = signed_map
+    mover = [0.7, 0.6, 0.0, -0.1, 0.025]  # robot at (0.5, 0.5) facing +x: 20 cm ahead, 10 cm to the left
+    obs = observation(np.full(12, np.inf), target=(0.0, 0.3), markers=[mover])
+    ahead = fields.build(fields.FieldParams(escape_s=0.0), ekm, cfg)
+    now = fields.build(fields.FieldParams(escape_s=0.0, mover_ahead_s=0.0), ekm, cfg)
+    k_ahead = int(ahead.step(ahead.init(), obs)[0].k)
+    k_now = int(now.step(now.init(), obs)[0].k)
+    assert abs(float(ekm.w[k_now, 0])) < 0.05  # straight at the checkpoint
+    assert abs(float(ekm.w[k_ahead, 0])) > 0.2  # off the mover's coming path
+
+
+def test_the_fields_step_straight_out_of_a_movers_way(signed_map):
+    """As Samba's test (tests/robots/controllers/test_samba.py): the robot at (0.5, 0.5) facing +x, its checkpoint
+    to its left; a mover of radius 2.5 cm 12 cm to its left comes at it at 0.1 m/s. Standing, the discs grown by
+    the 1 cm clearance (6 cm) meet after 0.6 s < escape_s = 1.5 s. Straight ahead at v the nearest approach is
+    0.12 v / sqrt(v² + 0.01): 4.5 cm at 0.04 m/s (hit), 6.2 cm at 0.06 m/s (never): both wheels 0.06 m/s. With
+    escape_s = 0 the fields' own command stands."""
+    ekm, cfg = signed_map
+    mover = [0.5, 0.62, 0.0, -0.1, 0.025]
+    obs = observation(np.full(12, np.inf), target=(np.pi / 2, 0.3), markers=[mover])
+    ctl = fields.build(fields.FieldParams(), ekm, cfg)
+    np.testing.assert_allclose(np.asarray(ctl.step(ctl.init(), obs)[1]), [0.06, 0.06], atol=1e-6)
+    off = fields.build(fields.FieldParams(escape_s=0.0), ekm, cfg)
+    assert not np.allclose(np.asarray(off.step(off.init(), obs)[1]), [0.06, 0.06], atol=1e-3)
