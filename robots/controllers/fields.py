@@ -37,7 +37,7 @@ Where the equations are silent, this module chooses (and says why):
 ``docs/reproduce/architectures.md``. As written, the fields keep nothing between ticks: each tick the robot takes the
 free direction nearest the target, dithers where that direction flips from side to side (mid-wall, the
 mouth of a U), and forgets a U's bottom once it is out of the sensors' 0.2 m. The extension keeps the
-fields' equations and adds three things, each with its reason:
+fields' equations and adds four things, each with its reason:
 
 1. **remembered obstacles** (:mod:`robots.controllers.memory`): the IR hits are kept in the world frame
    and fed to the obstacle field every tick from wherever the robot is — the obstacle fields
@@ -54,7 +54,12 @@ fields' equations and adds three things, each with its reason:
 3. **commitment to a side** (:func:`committed_winner`, ``commit``): while a remembered obstacle lies
    between the robot and the target, the robot keeps to the side it first turned to and takes the
    first open direction turning from the target's direction that way — the target field measured one
-   way round only — so it goes round a wall or out of a U instead of dithering.
+   way round only — so it goes round a wall or out of a U instead of dithering;
+4. **declared movers where they will be** (:func:`mover_inputs`, ``mover_ahead_s``, issue 32): each mover the
+   world declares is an obstacle where it is and where its velocity takes it over the next 0.5 s (its IR
+   returns are bound to it instead of lingering as still points), and the robot steps straight ahead or back
+   when a mover would hit it standing (:mod:`~robots.controllers.escape`, ``escape_s``, shared with Samba); a
+   mover closes directions but never starts the commitment to a side — it passes, a wall does not.
 """
 
 from __future__ import annotations
