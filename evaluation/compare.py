@@ -122,7 +122,7 @@ def run_job(job: Job) -> dict:
 @functools.lru_cache(maxsize=256)
 def _world(spelling: str):
     """The world of a job, read or generated once per worker process (a suite runs every architecture in it)."""
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     return load_world(spelling)
 

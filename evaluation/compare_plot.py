@@ -20,7 +20,7 @@ _COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:orange", "tab
 
 def comparison_figure(rows, records, worlds, labels) -> Figure:
     """The figure for summary ``rows`` (in :func:`evaluation.compare.summarize`'s order) and run ``records``."""
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     n_w = len(worlds)
     fig, grid, bars = _layout(n_w, len(labels), width=2.4)
@@ -77,7 +77,7 @@ def _success_bars(bars, labels, n_groups: int, row) -> None:
 def _path_grid(fig, grid, givens, labels, records, titles) -> None:
     """Each world ``givens[i]`` (as the jobs spelt it) across, each architecture down, with the path its first
     trial left in ``records``."""
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     for i, (given, title) in enumerate(zip(givens, titles)):
         world = load_world(given)

@@ -2,7 +2,7 @@
 
 Quick start::
 
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
     from planner import plan, replan
 
     world = load_world("three-rooms-changed")

@@ -3,7 +3,7 @@
 This is the imperative shell around :mod:`robots.kinematics` for every run that has obstacles in it
 (thesis ch. 6.2: Figs. 6.3–6.8). One :class:`PymunkWorld` holds one robot in one :class:`World`::
 
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
     from robots.world import PymunkWorld
 
     sim = PymunkWorld(load_world("three-rooms-static"), seed=0)
@@ -80,7 +80,7 @@ class PymunkWorld:
     Parameters
     ----------
     world : World
-        A validated world (:func:`robots.worldfile.load_world`).
+        A validated world (:func:`robots.worldnames.load_world`).
     params : RobotParams
         The robot (body radius, motors, sub-step ``dt``, sensor sets).
     seed : int

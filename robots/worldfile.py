@@ -36,7 +36,6 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -462,44 +461,6 @@ def parse_world(doc, source: str = "<world>") -> World:
     if not world.moving_goal and float(world.clearance(np.asarray(goal), 0.0, include_moving=False)) <= 0.0:
         ck.fail("goal", f"{list(goal)} lies inside a wall or obstacle")
     return world
-
-
-def named_worlds() -> list[str]:
-    """Names of the worlds shipped with the package, sorted."""
-    files = resources.files("robots.worlds").iterdir()
-    return sorted(f.name[:-5] for f in files if f.name.endswith(".json"))
-
-
-def load_world(name_or_path: str | Path) -> World:
-    """Load a named world (``ekm worlds`` lists them), a world file, or a generated world spelt
-    ``FAMILY:SEED`` or ``FAMILY:SEED:D`` (``maze:7``, ``maze:7:0.6``; :mod:`robots.generator`), validating
-    every key.
-
-    A generated world's name is its spelling, so ``load_world(world.name)`` makes it again, bit for bit:
-    a worker process gets a generated world from its name alone.
-    """
-    text_source = str(name_or_path)
-    path = Path(name_or_path)
-    if path.suffix != ".json" and not path.exists() and text_source in named_worlds():
-        text = resources.files("robots.worlds").joinpath(f"{text_source}.json").read_text()
-        source = text_source
-    else:
-        if not path.exists() and path.suffix != ".json":
-            from robots.generator import generate, parse_spelling
-
-            spelt = parse_spelling(text_source)
-            if spelt is not None:
-                return generate(*spelt)
-        if not path.is_file():
-            from robots.spelling import did_you_mean
-
-            names = ", ".join(named_worlds())
-            close = did_you_mean(text_source, named_worlds())
-            raise InputError(f"{text_source}: no such world file or named world{close} (named worlds: {names}; "
-                             f"or a generated world, FAMILY:SEED[:DIFFICULTY])")
-        text = read_text(path, text_source, "world")
-        source = text_source
-    return parse_world(decode(text, source), source)
 
 
 def read_text(path: Path, source: str, what: str) -> str:

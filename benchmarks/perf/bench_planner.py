@@ -32,7 +32,7 @@ from planner.graph import adjacency
 from planner.examples import random_bitmap
 from planner.search import shortest_route
 from robots.params import KHEPERA
-from robots.worldfile import load_world, named_worlds
+from robots.worldnames import load_world, named_worlds
 
 DENSITIES = (0.1, 0.2, 0.3, 0.4)
 

@@ -71,7 +71,7 @@ from evaluation.pinning import pin_to_one_cpu
 from evaluation.scenario import ScenarioConfig, run_scenario
 from robots.controllers.spec import parse_architectures
 from robots.world import PymunkWorld
-from robots.worldfile import load_world
+from robots.worldnames import load_world
 
 DEFAULT_ARCHITECTURES = "fusion,fields,samba,schema"  # the four of the README's compare table
 DEFAULT_WORLDS = ("three-rooms-static,three-rooms-moving,three-rooms-changed,extended-obstacle,concave-obstacle,"

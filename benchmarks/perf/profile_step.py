@@ -44,7 +44,7 @@ import numpy as np  # noqa: E402
 import evaluation.scenario as scenario  # noqa: E402
 from ekm.data import load_default_map  # noqa: E402
 from robots.controllers.spec import parse_architectures  # noqa: E402
-from robots.worldfile import load_world  # noqa: E402
+from robots.worldnames import load_world  # noqa: E402
 
 
 def recorded(spec, world, seed: int = 0):

@@ -41,7 +41,7 @@ def one(job):
     from ekm.mapfile import load_maps
     from evaluation.scenario import ScenarioConfig, run_architecture
     from robots.controllers.spec import parse_architecture
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     if map_path and map_path not in _MAPS:
         _MAPS[map_path] = load_maps(map_path)
@@ -87,7 +87,7 @@ def main(argv=None) -> int:
 
     from ekm.errors import InputError
     from robots.controllers.spec import parse_architectures
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     try:  # every bad name or parameter before any run
         architectures = [s.label for s in parse_architectures(args.architectures)]

@@ -187,7 +187,7 @@ def configs(settings: dict):
     thesis's 0.16 m/s and 0.16 m for the Khepera (ch. 6.1); fine-tuning keeps the map's own."""
     from ekm.config import EKMConfig
     from robots.robotfile import parse_robot
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
     from training.online import TrainConfig
 
     world = load_world(settings["world"])

@@ -24,7 +24,7 @@ def world(name_or_path):
         w = ekm.world("concave-obstacle")
         w.size, w.start, w.goal     # (1.2, 0.8), (0.15, 0.4, 0.0): x, y in m, heading in rad; (1.05, 0.4)
     """
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     if hasattr(name_or_path, "counts"):  # already a World
         return name_or_path
@@ -96,7 +96,7 @@ def worlds(check=None) -> Worlds:
         [w.name for w in ekm.worlds()]            # the eight named worlds
         ekm.worlds(check=["my-lab.json"])         # InputError naming the first problem, if any
     """
-    from robots.worldfile import named_worlds
+    from robots.worldnames import named_worlds
 
     if isinstance(check, (str, Path)):
         check = [check]

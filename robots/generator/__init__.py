@@ -3,7 +3,7 @@
 The idea is the BARN navigation benchmark's (Perille et al. 2020): many worlds of graded difficulty, made
 by a program rather than by hand, each checked to be solvable and labelled with measures of how hard it
 is. ``generate("maze", 7)`` is one world; its name, ``"maze:7"``, is also how
-:func:`robots.worldfile.load_world` (and so every ``--world`` option) spells it, so a worker process makes
+:func:`robots.worldnames.load_world` (and so every ``--world`` option) spells it, so a worker process makes
 the same world from the name alone, bit for bit.
 
 - ``difficulty`` (the level D in [0, 1], 0 easy) scales each family's features (turns, traps, density,
@@ -15,7 +15,7 @@ the same world from the name alone, bit for bit.
   holds the search's measures.
 - Coordinates are rounded to 0.1 mm, so the world file is tidy and a world is the same in any process.
 
-A family is one :class:`Family` in :data:`FAMILIES`: the package's are one module each
+A family is one :class:`~robots.generator.family.Family` in :data:`FAMILIES`: the package's are one module each
 (``robots/generator/families/NAME.py``, its ``layout`` and its ``FAMILY``); a user's is added with
 ``ekm.register_family`` or the entry-point group ``ekm.families``. :mod:`robots.generator.build` turns a
 layout into a world the same way for every family.
@@ -24,26 +24,9 @@ layout into a world the same way for every family.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
-from typing import Any, Callable
-
 from ekm.errors import InputError
+from robots.generator.family import Family
 from robots.registry import NAME, Registry, check_callable
-
-
-@dataclass(frozen=True)
-class Family:
-    """A family of generated worlds: ``layout(rng, level)`` draws one world's document from a NumPy generator and a
-    difficulty level in [0, 1] and returns a :class:`robots.generator.layout.Layout` (or raises
-    :class:`~robots.generator.layout.Retry` to be called again with the next sub-seed); ``summary``: one line,
-    what it makes. :func:`robots.generator.build.build` does the rest, the same for every family."""
-
-    name: str
-    layout: Callable[..., Any]
-    summary: str
-    #: ``overlay(rng, level, layout) -> Layout``: this family's features added to another family's layout, so that
-    #: ``"large+traffic:7"`` is a large world with traffic (:func:`family_of`); None: the family cannot be laid over.
-    overlay: Callable[..., Any] | None = None
 
 
 def _built_in() -> tuple[Family, ...]:

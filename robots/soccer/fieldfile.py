@@ -25,7 +25,7 @@ Every problem raises :class:`ekm.errors.InputError` with one line naming the fil
 ``my-pitch.json: soccer.goal_mouth: must be narrower than the field's width 0.8 m, got 0.9``.
 
 Named fields ship in the package ``robots.worlds.soccer`` (a folder of their own, so the named *worlds* of
-:func:`robots.worldfile.named_worlds` do not list them): ``lci-cup``, the defaults.
+:func:`robots.worldnames.named_worlds` do not list them): ``lci-cup``, the defaults.
 """
 
 from __future__ import annotations

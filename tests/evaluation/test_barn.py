@@ -9,7 +9,7 @@ from evaluation.compare import _row
 from evaluation.motion import barn
 from evaluation.scenario import run_scenario
 from planner.checkpoints import path_length
-from robots.worldfile import load_world
+from robots.worldnames import load_world
 from tests.evaluation.test_scenario import steering
 
 

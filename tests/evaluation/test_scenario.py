@@ -14,7 +14,8 @@ from robots.controllers.base import Controller
 from robots.controllers.spec import parse_architecture
 from robots.kinematics import egocentric
 from robots.params import KHEPERA
-from robots.worldfile import load_world, parse_world
+from robots.worldfile import parse_world
+from robots.worldnames import load_world
 
 OUTCOME_KEYS = ["world", "architecture", "reached", "time_s", "path_m", "collisions", "checkpoints_reached",
                 "replans", "trapped", "final_distance_m"]

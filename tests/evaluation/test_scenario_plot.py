@@ -12,7 +12,7 @@ from evaluation.scenario import PlanChange, RunRecord, ScenarioConfig, run_archi
 from evaluation.scenario_plot import (architecture_label, draw_run, frame_times, run_title, save_animation,
                                       save_run, sensed_points)
 from robots.controllers.spec import parse_architecture
-from robots.worldfile import load_world
+from robots.worldnames import load_world
 
 
 @pytest.fixture(scope="module")
@@ -168,7 +168,7 @@ def test_a_comparison_thumbnail_marks_each_collision_where_it_began_not_at_the_g
     from matplotlib.figure import Figure
 
     from evaluation.compare_plot import _draw_cell, end_marker
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     world = load_world("open-arena")
     gx, gy = world.goal_at(0.0)

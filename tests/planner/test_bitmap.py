@@ -11,7 +11,7 @@ from ekm.errors import InputError
 from planner.bitmap import (FREE, MAX_CELLS, OCCUPIED, cell_squares, free_cell_at, padded_obstacles, rasterise,
                             square_distance)
 from robots.geometry import Box, Circle, Polygon, Segment, distance
-from robots.worldfile import load_world
+from robots.worldnames import load_world
 
 coord = st.floats(-1.0, 1.0, allow_nan=False)
 positive = st.floats(0.02, 0.6, allow_nan=False)

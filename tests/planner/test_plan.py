@@ -8,7 +8,8 @@ from ekm.errors import InputError
 from planner import METHODS, NoRouteError, decompose, map_changed, plan, replan
 from planner.bitmap import FREE
 from planner.examples import random_bitmap
-from robots.worldfile import load_world, named_worlds, parse_world
+from robots.worldfile import parse_world
+from robots.worldnames import load_world, named_worlds
 from tests.planner.checks import assert_checkpoints_on_shared_boundaries, check_decomposition
 
 

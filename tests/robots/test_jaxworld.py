@@ -182,7 +182,7 @@ def test_a_batch_of_different_worlds_steps_as_each_alone():
 
 
 def test_worlds_with_movers_are_refused_in_one_line():
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     with pytest.raises(InputError, match=r"^engine jax: world 'three-rooms-moving' has moving obstacles"):
         scene_of(load_world("three-rooms-moving"))
@@ -193,7 +193,7 @@ def test_the_engines_trace_the_same_path_through_a_named_world(name):
     # 200 ticks (25.6 s) of seeded random commands and slip draws, with contacts: the engines differ only by
     # float32 against float64 rounding, so the paths stay within 0.1 mm, the contact episodes are the same, and so
     # are the true IR ranges along the way (within 0.1 mm where either sees something)
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     w = load_world(name)
     rng = np.random.default_rng(3)

@@ -7,7 +7,7 @@ import pytest
 
 from ekm.errors import InputError
 from robots.plot import plot_world, save_figure
-from robots.worldfile import load_world
+from robots.worldnames import load_world
 
 
 def test_plot_draws_movers_where_they_are_and_names_every_kind_in_the_legend():

@@ -16,7 +16,7 @@ from robots.generator import FAMILIES, Family
 from robots.generator.layout import Layout
 from robots.registry import KINDS, Registry, added_here, adopt
 from robots.soccer.roster import PLAYERS, Player
-from robots.worldfile import load_world
+from robots.worldnames import load_world
 
 
 @dataclass(frozen=True)

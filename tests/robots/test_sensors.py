@@ -10,7 +10,8 @@ import pytest
 from robots.params import KHEPERA, LONG_RANGE, SHORT_RANGE
 from robots.sensors import ir_readings, sensor_rays
 from robots.world import PymunkWorld
-from robots.worldfile import load_world, parse_world
+from robots.worldfile import parse_world
+from robots.worldnames import load_world
 
 R = KHEPERA.radius
 TAU = LONG_RANGE.resolution_m

@@ -13,7 +13,8 @@ from robots import kinematics
 from robots.geometry import polygon_contains, signed_area
 from robots.params import KHEPERA
 from robots.world import PymunkWorld, convex_pieces
-from robots.worldfile import load_world, parse_world
+from robots.worldfile import parse_world
+from robots.worldnames import load_world
 
 C = KHEPERA.max_wheel_speed
 

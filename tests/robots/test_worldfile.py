@@ -12,7 +12,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ekm.errors import InputError
-from robots.worldfile import World, load_world, parse_world, world_document, world_json
+from robots.worldfile import World, parse_world, world_document, world_json
+from robots.worldnames import load_world
 from tests.fuzzing import FUZZ, assert_loads_or_refuses
 
 GOOD = {
@@ -153,7 +154,7 @@ def test_a_bad_difficulty_is_refused_naming_the_key(difficulty, message):
 
 
 def test_world_document_round_trips_the_named_worlds():
-    from robots.worldfile import named_worlds
+    from robots.worldnames import named_worlds
 
     for name in named_worlds():
         w = load_world(name)

@@ -9,7 +9,8 @@ from robots.geometry import distance
 from robots.params import KHEPERA, LONG_RANGE, SHORT_RANGE
 from robots.plot import plot_world, save_figure
 from robots.world import PymunkWorld
-from robots.worldfile import CirclePath, LinePath, load_world, named_worlds
+from robots.worldfile import CirclePath, LinePath
+from robots.worldnames import load_world, named_worlds
 
 R = KHEPERA.radius
 REACH = R + LONG_RANGE.range_m  # a long-range sensor sees 20 cm from the robot's centre (thesis ch. 6.2.2)

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import (ARENA, T, box, edge_line, Layout, Retry, room_edges, unit_between, wall,
                                      wall_with_door)
 

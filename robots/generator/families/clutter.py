@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import T, as_shape, box, circle, doc_bounds, Layout, unit
 from robots.generator.shapes import bounding_radius, shape_gap
 from robots.geometry import Box, Circle

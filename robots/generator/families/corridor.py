@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import ARENA, T, Layout, Retry, unit, unit_between, wall
 from robots.generator.shapes import offset_polyline, walls_apart
 

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.families.blocked import _blocker, ring_of_rooms
 from robots.generator.layout import T, Layout, Retry, along, as_shape, polyline_length, route_of, wall
 from robots.generator.shapes import route_passes

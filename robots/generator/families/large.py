@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.families.maze import _spanning_tree
 from robots.generator.layout import T, edge_line, Layout, Retry, room_edges, wall, wall_with_door
 

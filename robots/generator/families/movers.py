@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import ARENA, R, T, Layout, Retry, wall, wall_with_door
 from robots.geometry import segment_distance
 

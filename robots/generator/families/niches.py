@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import R, T, Layout, Retry, wall
 
 

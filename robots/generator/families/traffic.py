@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import R, T, Layout, Retry, along, polyline_length, route_of, wall_with_door
 from robots.geometry import segment_distance
 

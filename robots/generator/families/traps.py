@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from robots.generator import Family
+from robots.generator.family import Family
 from robots.generator.layout import ARENA, T, box, doc_bounds, Layout, moved, Retry
 from robots.generator.shapes import thick_polyline
 

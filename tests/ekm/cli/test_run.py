@@ -23,7 +23,7 @@ def test_run_prints_the_outcome_record_as_json(capsys):
                               "checkpoints_reached", "replans", "trapped", "final_distance_m"]
     assert rec["world"] == "three-rooms-static" and rec["architecture"].startswith("fields:sensors=long,form=extended")
     from planner import plan
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     planned = len(plan(load_world("three-rooms-static")).checkpoints)  # the visible checkpoints, goal included
     assert rec["reached"] and rec["collisions"] == 0 and rec["checkpoints_reached"] == planned

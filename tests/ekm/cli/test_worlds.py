@@ -11,7 +11,8 @@ import pytest
 
 from ekm.cli import main
 from robots.generator import FAMILIES, generate
-from robots.worldfile import named_worlds, world_json
+from robots.worldfile import world_json
+from robots.worldnames import named_worlds
 
 ROOT = Path(__file__).resolve().parents[3]
 GOOD = {"name": "lab", "size": [1.0, 0.5], "start": [0.1, 0.25, 0.0], "goal": [0.9, 0.25],

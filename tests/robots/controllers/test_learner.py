@@ -22,7 +22,7 @@ RATE_0 = LearnParams(rule=Adaptation(rule="constant", eta=0.0))
 def test_at_rate_0_a_learning_run_is_the_frozen_run_bit_for_bit(architecture, world):
     from evaluation.scenario import run_architecture
     from robots.controllers.spec import parse_architecture
-    from robots.worldfile import load_world
+    from robots.worldnames import load_world
 
     w, spec = load_world(world), parse_architecture(architecture)
     frozen = run_architecture(w, spec, seed=3)

@@ -20,9 +20,10 @@ from robots.controllers.spec import ARCHITECTURES, parse_architecture
 from robots.kinematics import is_stop_command
 from robots.params import KHEPERA
 from robots.world import PymunkWorld
-from robots.worldfile import LinePath, load_world, parse_world
+from robots.worldfile import LinePath, parse_world
 
 #: Fig. 29/30: a stationary obstacle (a declared "moving" one that stands still, so that it is a known object
+from robots.worldnames import load_world
 #: marker) straight between the robot and its target.
 BEHIND = parse_world({
     "name": "target-behind-obstacle", "size": [1.0, 0.6],

@@ -14,7 +14,8 @@ from robots.controllers import schema
 from robots.controllers.base import Controller, Observation, velocity_to_wheels
 from robots.controllers.spec import parse_architecture
 from robots.params import KHEPERA, LONG_RANGE
-from robots.worldfile import load_world, parse_world
+from robots.worldfile import parse_world
+from robots.worldnames import load_world
 
 P = schema.SchemaParams()
 ANGLES = jnp.asarray(LONG_RANGE.angles, jnp.float32)  # 0° first, 30° apart, + = left

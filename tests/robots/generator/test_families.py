@@ -18,7 +18,8 @@ from robots.generator.shapes import route_passes, shape_gap, walls_apart
 from robots.generator.reach import reach
 from robots.geometry import Box, Circle, Polygon, Segment, bounds, distance
 from robots.params import KHEPERA
-from robots.worldfile import load_world, parse_world, world_document, world_json
+from robots.worldfile import parse_world, world_document, world_json
+from robots.worldnames import load_world
 
 R = KHEPERA.radius
 SEEDS = (0, 1, 2, 7)

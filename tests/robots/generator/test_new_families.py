@@ -13,7 +13,8 @@ import pytest
 from robots.generator import FAMILIES, family_of, generate, parse_spelling
 from robots.geometry import segment_distance
 from robots.params import KHEPERA
-from robots.worldfile import load_world, world_json
+from robots.worldfile import world_json
+from robots.worldnames import load_world
 
 R = KHEPERA.radius
 NEW = ("niches", "traffic", "pillars", "shapes", "slanted", "large", "doors")

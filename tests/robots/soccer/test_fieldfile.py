@@ -12,7 +12,7 @@ from robots.soccer.field import Field
 from robots.soccer.fieldfile import (SoccerField, field_document, load_field, named_fields, parse_field,
                                      save_field)
 from robots.soccer.game import kickoff_poses
-from robots.worldfile import load_world, named_worlds
+from robots.worldnames import load_world, named_worlds
 
 
 def write(tmp_path, doc, name="pitch.json"):
