@@ -20,6 +20,7 @@ import jax.numpy as jnp
 
 from ekm.angles import wrap
 from robots.controllers import actionmaps as am
+from robots.controllers import escape as esc
 from robots.controllers import samba as nav
 from robots.controllers.base import Controller, ring, velocity_to_wheels
 from robots.params import KHEPERA, RobotParams
@@ -188,8 +189,8 @@ def touches(play: Play, p: SoccerSambaParams, robot: RobotParams):
     pose = jnp.asarray(play.pose, jnp.float32)
     ball = jnp.asarray(play.ball, jnp.float32)
     theta = pose[2]
-    b = nav._to_robot(ball[:2] - pose[:2], theta)
-    vb = nav._to_robot(ball[2:4], theta)
+    b = esc.to_robot(ball[:2] - pose[:2], theta)
+    vb = esc.to_robot(ball[2:4], theta)
     t = am.collision_times(b[None], vb[None], jnp.asarray([robot.radius + p.ball_radius]), grid)
     tt = jnp.where(jnp.isfinite(t), t, 0.0)[..., None]
     v = jnp.asarray(grid.velocities())
@@ -197,8 +198,8 @@ def touches(play: Play, p: SoccerSambaParams, robot: RobotParams):
     n = _unit(centre - v * tt)
     push = jnp.maximum(jnp.sum((v - vb) * n, axis=-1, keepdims=True), 0.0)
     out = vb + (1.0 + p.restitution) * push * n
-    # back to the field frame: _to_robot by −θ turns by +θ
-    return t, pose[:2] + nav._to_robot(centre, -theta), nav._to_robot(out, -theta)
+    # back to the field frame: to_robot by −θ turns by +θ
+    return t, pose[:2] + esc.to_robot(centre, -theta), esc.to_robot(out, -theta)
 
 
 def kicks(play: Play, p: SoccerSambaParams, field: Field, robot: RobotParams):
@@ -234,7 +235,7 @@ def ball_meets(at, out, t, opponent, radius: float):
 def _seen(play: Play, point, velocity):
     """A field-frame point and velocity as seen from the robot (position, velocity in the robot frame)."""
     pose = jnp.asarray(play.pose, jnp.float32)
-    return nav._to_robot(point - pose[:2], pose[2]), nav._to_robot(velocity, pose[2])
+    return esc.to_robot(point - pose[:2], pose[2]), esc.to_robot(velocity, pose[2])
 
 
 def maps(state: SoccerSambaState, play: Play, p: SoccerSambaParams, field: Field = Field(),
