@@ -55,11 +55,12 @@ fields' equations and adds four things, each with its reason:
    between the robot and the target, the robot keeps to the side it first turned to and takes the
    first open direction turning from the target's direction that way — the target field measured one
    way round only — so it goes round a wall or out of a U instead of dithering;
-4. **declared movers where they will be** (:func:`mover_inputs`, ``mover_ahead_s``, issue 32): each mover the
-   world declares is an obstacle where it is and where its velocity takes it over the next 0.5 s (its IR
-   returns are bound to it instead of lingering as still points), and the robot steps straight ahead or back
-   when a mover would hit it standing (:mod:`~robots.controllers.escape`, ``escape_s``, shared with Samba); a
-   mover closes directions but never starts the commitment to a side — it passes, a wall does not.
+4. **out of a declared mover's way** (issue 32): the robot steps straight ahead or back when a mover the world
+   declares would hit it standing (:mod:`~robots.controllers.escape`, ``escape_s``, shared with Samba). Opt-in,
+   ``mover_ahead_s`` > 0 also makes each declared mover an obstacle where it is and where its velocity takes it
+   over that many seconds (:func:`mover_inputs`; its IR returns bound to it, not lingering as still points), one
+   that closes directions but never starts the commitment to a side — it passes, a wall does not. It halves the
+   collisions in traffic and costs a mover shuttling along a corridor the robot needs (``docs/reproduce/every-kind.md``).
 """
 
 from __future__ import annotations
@@ -122,7 +123,7 @@ class FieldParams:
                                                           "obstacle in the way of the wheels' motion (0: no guard)"})
     guard_clearance: float = field(default=0.01, metadata={"help": "form=extended: m beside the body within which a "
                                                                   "remembered obstacle is in the way of the wheels"})
-    mover_ahead_s: float = field(default=0.5, metadata={
+    mover_ahead_s: float = field(default=0.0, metadata={
         "help": "form=extended: s ahead along its velocity up to which a declared mover counts as an obstacle where "
                 "it will be, as well as where it is (0: movers only as the IR sees them)"})
     escape_s: float = field(default=1.5, metadata={
