@@ -153,7 +153,7 @@ def test_a_mover_on_its_way_closes_the_direction_it_will_cross(signed_map):
     ekm, cfg = signed_map
     mover = [0.7, 0.6, 0.0, -0.1, 0.025]  # robot at (0.5, 0.5) facing +x: 20 cm ahead, 10 cm to the left
     obs = observation(np.full(12, np.inf), target=(0.0, 0.3), markers=[mover])
-    ahead = fields.build(fields.FieldParams(escape_s=0.0), ekm, cfg)
+    ahead = fields.build(fields.FieldParams(escape_s=0.0, mover_ahead_s=1.0), ekm, cfg)
     now = fields.build(fields.FieldParams(escape_s=0.0, mover_ahead_s=0.0), ekm, cfg)
     k_ahead = int(ahead.step(ahead.init(), obs)[0].k)
     k_now = int(now.step(now.init(), obs)[0].k)
