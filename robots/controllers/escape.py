@@ -33,6 +33,17 @@ def markers_to_robot(markers, pose):
                             markers[:, 4:5]], axis=1)
 
 
+def object_markers(points, still, markers, pose):
+    """Object markers ``(K + k, 5)`` in the robot frame of ``pose`` ``(3,)`` — the world ``points`` ``(K, 2)`` as still
+    ones, then the declared movers ``markers`` ``(k, 5)`` (world frame) — and which count ``(K + k,)``: the points
+    where ``still``, every mover."""
+    pts = to_robot(points - pose[:2], pose[2])
+    moving = markers_to_robot(markers, pose)
+    objects = jnp.concatenate([jnp.concatenate([pts, jnp.zeros_like(pts), jnp.zeros_like(pts[:, :1])], axis=1),
+                               moving], axis=0)
+    return objects, jnp.concatenate([still, jnp.ones(moving.shape[0], bool)])
+
+
 def standing_time(objects, valid, n_still: int, grow: float):
     """When the first declared mover (rows ``n_still:`` of ``objects`` ``(n, 5)``, where ``valid``) touches the
     robot standing still, its disc grown by ``grow`` (m: the robot's radius plus any clearance); ``inf``: never."""

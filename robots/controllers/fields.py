@@ -385,15 +385,9 @@ def out_of_the_way(c, points, still, obs: Observation, radius: float, max_speed:
     """The wheel command ``c`` ``(2,)``, or — when a declared mover would hit the robot standing within ``escape_s``
     — the straight motion ahead or back that puts the first contact off the longest (:mod:`~robots.controllers.
     escape`, shared with Samba; the remembered ``points`` ``(K, 2)`` that are ``still`` count along the ray).
-    Why: the fields choose a displacement the wheels reach along an arc that starts with a turn; the e-puck, wider
-    and slower than the Khepera, turning in the doorway of three-rooms-moving was hit by the circling mover in
-    10 runs of 10 (issue 32)."""
-    pose = jnp.asarray(obs.pose, jnp.float32)
-    pts = esc.to_robot(points - pose[:2], pose[2])
-    objects = jnp.concatenate([jnp.concatenate([pts, jnp.zeros_like(pts), jnp.zeros_like(pts[:, :1])], axis=1),
-                               esc.markers_to_robot(obs.markers, pose)], axis=0)
-    markers = objects.shape[0] - points.shape[0]
-    valid = jnp.concatenate([still, jnp.ones(markers, bool)])
+    Why: the fields choose a displacement the wheels reach along an arc that starts with a turn, and a robot turning
+    in a mover's path is hit (measured in ``docs/reproduce/every-kind.md``)."""
+    objects, valid = esc.object_markers(points, still, obs.markers, jnp.asarray(obs.pose, jnp.float32))
     grid = am.VelocityGrid(4, ESCAPE_SPEEDS, max_speed)
     grow = radius + p.clearance
     n = points.shape[0]

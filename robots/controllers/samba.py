@@ -160,11 +160,7 @@ def bind(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     readings = mem.off_movers(pose, ir, angles, markers, radius=robot.radius)
     memory = mem.update(state.memory, pose, readings, angles, obs.t, radius=robot.radius, range_m=sensors.range_m,
                         merge=p.merge, forget_after=p.memory_s)
-    pts = esc.to_robot(memory.points - pose[:2], pose[2])
-    still = jnp.concatenate([pts, jnp.zeros_like(pts), jnp.zeros_like(pts[:, :1])], axis=1)
-    moving = esc.markers_to_robot(markers, pose)
-    objects = jnp.concatenate([still, moving], axis=0)
-    valid = jnp.concatenate([jnp.isfinite(memory.seen), jnp.ones(markers.shape[0], bool)])
+    objects, valid = esc.object_markers(memory.points, jnp.isfinite(memory.seen), markers, pose)
     return memory, objects, valid
 
 
@@ -289,8 +285,7 @@ def step(state: SambaState, obs: Observation, *, p: SambaParams, robot: RobotPar
 def escape(wheels, tick: Tick, p: SambaParams, robot: RobotParams = KHEPERA):
     """The wheel command when a declared mover would hit the robot where it stands within ``escape_s``: the
     straight motion that puts the first contact off the longest (:mod:`~robots.controllers.escape`, an extension,
-    issue 35; its times straight ahead and back are the Avoid map's own). In issue 35's traffic Samba collided in
-    4 runs of 4 with three movers crossing a corridor, turning on the spot in a mover's path."""
+    issue 35; its times straight ahead and back are the Avoid map's own)."""
     grid = p.grid(robot)
     t_stand = esc.standing_time(tick.objects, tick.valid, p.memory_points, robot.radius + p.clearance)
     straight = jnp.stack([tick.times[0], tick.times[grid.directions // 2]])  # θ = 0 and θ = π
