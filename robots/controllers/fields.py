@@ -55,12 +55,14 @@ fields' equations and adds four things, each with its reason:
    between the robot and the target, the robot keeps to the side it first turned to and takes the
    first open direction turning from the target's direction that way — the target field measured one
    way round only — so it goes round a wall or out of a U instead of dithering;
-4. **out of a declared mover's way** (issue 32): the robot steps straight ahead or back when a mover the world
-   declares would hit it standing (:mod:`~robots.controllers.escape`, ``escape_s``, shared with Samba). Opt-in,
-   ``mover_ahead_s`` > 0 also makes each declared mover an obstacle where it is and where its velocity takes it
-   over that many seconds (:func:`mover_inputs`; its IR returns bound to it, not lingering as still points), one
-   that closes directions but never starts the commitment to a side — it passes, a wall does not. It halves the
-   collisions in traffic and costs a mover shuttling along a corridor the robot needs (``docs/reproduce/every-kind.md``).
+4. **declared movers** (issue 32): the robot steps straight ahead or back when a mover the world declares would
+   hit it standing (:mod:`~robots.controllers.escape`, ``escape_s``, shared with Samba); and a mover crossing the
+   robot's line of sight (:func:`crossing`) is an obstacle where it is and where its velocity takes it over
+   ``mover_ahead_s`` seconds (:func:`mover_inputs`; its IR returns bound to it, not lingering as still points), one
+   that closes directions but never starts the commitment to a side — it passes, a wall does not. A mover coming
+   or going along the line of sight keeps its bearing and does not pass: the IR sees it as it sees a wall, and the
+   robot goes round it (a mover shuttling along the corridor the route needs). Measured on the tuning seeds in
+   ``docs/reproduce/every-kind.md``.
 """
 
 from __future__ import annotations
@@ -123,9 +125,9 @@ class FieldParams:
                                                           "obstacle in the way of the wheels' motion (0: no guard)"})
     guard_clearance: float = field(default=0.01, metadata={"help": "form=extended: m beside the body within which a "
                                                                   "remembered obstacle is in the way of the wheels"})
-    mover_ahead_s: float = field(default=0.0, metadata={
-        "help": "form=extended: s ahead along its velocity up to which a declared mover counts as an obstacle where "
-                "it will be, as well as where it is (0: movers only as the IR sees them)"})
+    mover_ahead_s: float = field(default=1.0, metadata={
+        "help": "form=extended: s ahead along its velocity up to which a declared mover crossing the line of sight "
+                "counts as an obstacle where it will be, as well as where it is (0: movers only as the IR sees them)"})
     escape_s: float = field(default=1.5, metadata={
         "help": "form=extended: a declared mover that would hit the robot standing where it is within this many s: it "
                 "drives straight ahead or back out of the mover's way (0: never), s"})
@@ -208,6 +210,19 @@ def gap_clearance(u_obs, valid, target_alpha, radius: float, p: FieldParams):
 MOVER_PLACES = 3
 
 
+def crossing(markers, pose):
+    """Which declared movers ``markers`` ``(k, 5)`` (x, y, vx, vy, radius; world frame) cross the robot's line of
+    sight ``(k,)``: their velocity's part across the line from the robot at ``pose`` to them is larger than its part
+    along it. Why: the places ahead of a crossing mover sweep across the directions the robot could take, and it
+    passes out of the way; one coming along the line (or going away, or standing) keeps its bearing and does not
+    pass — as a wall, the robot must go round it (a mover shuttling along the corridor the route needs)."""
+    markers = jnp.asarray(markers, jnp.float32).reshape(-1, 5)
+    los = markers[:, :2] - jnp.asarray(pose[:2], jnp.float32)
+    along = jnp.abs(los[:, 0] * markers[:, 2] + los[:, 1] * markers[:, 3])
+    across = jnp.abs(los[:, 0] * markers[:, 3] - los[:, 1] * markers[:, 2])
+    return across > along
+
+
 def mover_inputs(markers, pose, radius: float, ahead_s: float):
     """Obstacle inputs u = (α, d) ``(k · MOVER_PLACES, 2)`` of the declared movers ``markers`` ``(k, 5)`` (x, y, vx,
     vy, radius; world frame) where each is now and where it will be, at its velocity, evenly up to ``ahead_s``
@@ -270,16 +285,22 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
     s = winner(ekm.w, obs.target, cfg)
     g_a = target_field(ekm.w, s, p, cfg)
     if p.form == "extended":
-        ir = mem.off_movers(obs.pose, obs.ir, angles, obs.markers, radius=radius) if p.mover_ahead_s > 0 else obs.ir
+        if p.mover_ahead_s > 0:  # crossing movers by their places ahead; the others by the IR, as still obstacles
+            markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
+            placed = crossing(markers, obs.pose)
+            ir = mem.off_movers(obs.pose, obs.ir, angles, markers.at[:, 4].set(jnp.where(placed, markers[:, 4], -1.0)),
+                                radius=radius)
+        else:
+            ir = obs.ir
         memory = mem.update(state.memory, obs.pose, ir, angles, obs.t, radius=radius, range_m=range_m,
                             merge=p.merge, forget_after=p.memory_s)
         state = state._replace(memory=memory)
         u_obs, valid = mem.egocentric(memory, obs.pose, radius=radius)
         grown = jnp.zeros_like(u_obs[:, :1])  # m each obstacle adds to the clearance: 0 for a point
         if p.mover_ahead_s > 0:
-            u_mov, r_mov = mover_inputs(obs.markers, obs.pose, radius, p.mover_ahead_s)
+            u_mov, r_mov = mover_inputs(markers, obs.pose, radius, p.mover_ahead_s)
             u_obs, grown = jnp.concatenate([u_obs, u_mov]), jnp.concatenate([grown, r_mov[:, None]])
-            valid = jnp.concatenate([valid, jnp.ones(u_mov.shape[0], bool)])
+            valid = jnp.concatenate([valid, jnp.repeat(placed, MOVER_PLACES)])
         valid = valid & (u_obs[:, 1] < obs.target[1])
         directions = jnp.append(ekm.w[:, 0], obs.target[0])
 

@@ -145,6 +145,33 @@ def test_a_mover_is_placed_where_it_is_and_where_it_will_be():
     np.testing.assert_allclose(np.asarray(r), [0.02, 0.02, 0.02])
 
 
+def test_a_mover_crosses_the_line_of_sight_when_its_velocity_is_more_across_it_than_along_it():
+    """The robot at the origin, a mover 1 m away along +x: moving along y it crosses; along x (coming or going) it
+    does not; at (−0.1, 0.05) m/s its part along the line (0.1) beats the part across (0.05); at (0.05, 0.1) the
+    other way round; a mover standing still crosses nothing. Seen from (1, 1) instead, the line is along y."""
+    v = [(0.0, 0.1), (-0.1, 0.0), (0.1, 0.0), (-0.1, 0.05), (0.05, 0.1), (0.0, 0.0)]
+    markers = np.array([[1.0, 0.0, vx, vy, 0.02] for vx, vy in v], np.float32)
+    assert np.asarray(fields.crossing(markers, np.zeros(3, np.float32))).tolist() == [True, False, False, False,
+                                                                                      True, False]
+    from_above = np.asarray(fields.crossing(markers, np.array([1.0, 1.0, 0.0], np.float32)))
+    assert from_above.tolist() == [False, True, True, True, False, False]
+
+
+@pytest.mark.parametrize("velocity, remembered", [((0.05, 0.0), 1), ((0.0, 0.05), 0)])
+def test_the_ir_return_of_a_mover_is_kept_unless_it_crosses(signed_map, velocity, remembered):
+    """The robot at (0.5, 0.5) facing +x sees something 10 cm straight ahead (sensor 0), where a declared mover of
+    radius 2.5 cm stands at 0.5 + 0.025 + 0.1 + 0.025 = 0.65 m. Going away along the line of sight it does not
+    cross: its IR return is remembered as a still point (one), and it is an obstacle as a wall is; crossing the line
+    (+y) it is placed by its velocity instead and its return dropped (none remembered)."""
+    markers = [[0.65, 0.5, *velocity, 0.025]]
+    obs = observation(np.r_[0.1, np.full(11, np.inf)], target=(0.0, 0.3), markers=markers)
+    p = FieldParams(mover_ahead_s=1.0)
+    ekm, cfg = signed_map
+    state, _, _ = fields.fields(fields.init(p), ekm, obs, jnp.asarray(fields.sensor_angles(LONG_RANGE)), p, cfg,
+                                radius=0.025, range_m=LONG_RANGE.range_m)
+    assert int(np.isfinite(np.asarray(state.memory.seen)).sum()) == remembered
+
+
 def test_a_mover_on_its_way_closes_the_direction_it_will_cross(signed_map):
     """The checkpoint 30 cm straight ahead, nothing sensed; a mover 20 cm ahead and 10 cm to the left crossing the
     way at 0.1 m/s to the right. Where it is, it does not block the way straight ahead (10 cm off the line; the
