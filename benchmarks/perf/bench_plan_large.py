@@ -16,6 +16,7 @@ where the slack's Lipschitz bound allows: the same answers). Wall-clock times de
 from __future__ import annotations
 
 import argparse
+import importlib
 import time
 
 from planner import plan
@@ -25,10 +26,9 @@ from robots.params import KHEPERA
 
 
 def fresh_plan(world):
-    """:func:`planner.plan` with every per-process cache cleared first (s, the plan)."""
-    from planner import bitmap, plan as plan_module
-
-    for module in (bitmap, plan_module):
+    """:func:`planner.plan` with every per-process cache cleared first (s, the plan). The module ``planner.plan`` is
+    looked up by name: ``from planner import plan`` is the function, whose own attributes hold no cache."""
+    for module in (importlib.import_module("planner.bitmap"), importlib.import_module("planner.plan")):
         for name in dir(module):
             cached = getattr(module, name)
             if hasattr(cached, "cache_clear"):
