@@ -28,9 +28,11 @@ search of :mod:`planner.search`); ``checkpoints="thesis"`` in :func:`planner.pla
 
 from __future__ import annotations
 
+import functools
 import heapq
 import math
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -57,45 +59,51 @@ LEAD = 0.06
 def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
     """Slack ``(...,)`` of ``points`` ``(..., 2)``: min over padded obstacles of distance − clearance (m);
     negative inside a cushion."""
+    return _slack(points, obstacles, np.arange(len(obstacles)))
+
+
+def _slack(points, obstacles: Sequence[Padded], which: np.ndarray) -> np.ndarray:
+    """:func:`slack` over the obstacles ``obstacles[which]`` only (``which`` ``(m,)`` int). The walls are measured
+    all at once (:func:`_walls_slack`, in chunks of at most 2 million point-wall pairs), the other shapes one by
+    one."""
     p = np.asarray(points, dtype=float)
+    table = _table(obstacles)
     out = np.full(p.shape[:-1], np.inf)
-    walls = [(shape, clearance) for shape, clearance in obstacles if isinstance(shape, Segment)]
-    for shape, clearance in obstacles:
-        if not isinstance(shape, Segment):
-            out = np.minimum(out, distance(p, shape) - clearance)
-    if walls:
+    for k in which[~table.wall[which]].tolist():
+        shape, clearance = obstacles[k]
+        out = np.minimum(out, distance(p, shape) - clearance)
+    walls = table.walls[which[table.wall[which]]]
+    if len(walls):
         flat = p.reshape(-1, 2)
         chunk = max(1, 2_000_000 // max(1, len(flat)))
         least = out.reshape(-1)
         for k in range(0, len(walls), chunk):
-            least = np.minimum(least, _walls_slack(flat, walls[k:k + chunk]))
+            least = np.minimum(least, _walls_slack(flat, walls[k:k + chunk]).min(axis=1))
         out = least.reshape(out.shape)
     return out
 
 
-def _walls_slack(p: np.ndarray, walls: list) -> np.ndarray:
-    """min over the wall segments of distance − clearance at ``p`` ``(n, 2)``, all walls at once (the arithmetic of
-    :func:`robots.geometry.segment_distance`, a wall to a column): a large world has hundreds of walls, and one
-    call a wall cost more than the sums."""
-    a = np.array([w.start for w, _ in walls], dtype=float)  # (m, 2)
-    ab = np.array([w.end for w, _ in walls], dtype=float) - a
-    denom = np.einsum("mi,mi->m", ab, ab)
-    rel = p[:, None, :] - a[None]  # (n, m, 2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(denom > 0, np.clip(np.einsum("nmi,mi->nm", rel, ab) / denom, 0.0, 1.0), 0.0)
-    d = rel - t[..., None] * ab[None]
-    clearance = np.array([c for _, c in walls], dtype=float)
-    return np.min(np.sqrt(np.einsum("nmi,nmi->nm", d, d)) - clearance, axis=1)
+def _walls_slack(p: np.ndarray, walls: np.ndarray) -> np.ndarray:
+    """Distance − clearance ``(n, m)`` (m) from the points ``p`` ``(n, 2)`` to the walls ``walls`` ``(m, 6)`` (rows of
+    :attr:`_Table.walls`), all at once: a large world has hundreds of walls, and one NumPy call a wall cost more
+    than the sums. The arithmetic of :func:`robots.geometry.segment_distance` (t clipped to the wall, 0 on a wall
+    of no length, whose ``ab`` is zero), written out per coordinate."""
+    rx = p[:, 0:1] - walls[:, 0]  # (n, m)
+    ry = p[:, 1:2] - walls[:, 1]
+    t = np.minimum(np.maximum((rx * walls[:, 2] + ry * walls[:, 3]) / walls[:, 4], 0.0), 1.0)
+    dx = rx - t * walls[:, 2]
+    dy = ry - t * walls[:, 3]
+    return np.sqrt(dx * dx + dy * dy) - walls[:, 5]
 
 
 def segment_slack(a, b, obstacles: Sequence[Padded], step: float = STEP) -> float:
     """Least slack (m) of the points of segment ``a``–``b``, sampled every ``step`` (the slack is 1-Lipschitz,
     so the true least is within ``step / 2`` of this). Only obstacles whose grown box meets the segment's
     box are measured."""
-    pts, near = _samples(a, b, obstacles, step)
-    if not near:
+    a, b, n, near = _leg(a, b, obstacles, step)
+    if not len(near):
         return math.inf
-    return float(slack(pts, near).min())
+    return float(_slack(_points(a, b, n), obstacles, near).min())
 
 
 def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float = STEP, every: int = 16) -> bool:
@@ -105,54 +113,79 @@ def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float =
     close to a measured one) is ``>= least``, every sample point is clear. Only in between are all measured. A
     long leg of a large world has thousands of sample points near dozens of walls; most legs are decided on a
     sixteenth of them (issue 35: planning a 4 m world took seconds)."""
-    pts, near = _samples(a, b, obstacles, step)
-    if not near:
+    a, b, n, near = _leg(a, b, obstacles, step)
+    if not len(near):
         return math.inf >= least
-    n = len(pts)
-    idx = np.unique(np.append(np.arange(0, n, every), n - 1))
-    coarse = float(slack(pts[idx], near).min())
+    pts = _points(a, b, n, every)
+    coarse = float(_slack(pts, obstacles, near).min())
     if coarse < least:
         return False
     spacing = float(np.linalg.norm(pts[-1] - pts[0])) / (n - 1)
     if coarse - (every / 2) * spacing >= least:
         return True
-    return float(slack(pts, near).min()) >= least
+    return float(_slack(_points(a, b, n), obstacles, near).min()) >= least
 
 
-def _samples(a, b, obstacles: Sequence[Padded], step: float):
-    """The sample points ``(n, 2)`` of segment ``a``–``b`` every ``step`` (at least its two ends) and the padded
-    obstacles whose box grown by their clearance + 5 cm meets the segment's box."""
+def _leg(a, b, obstacles: Sequence[Padded], step: float):
+    """The ends ``a``, ``b`` of a leg as float arrays ``(2,)``, its number of sample points ``n`` (every ``step``,
+    at least its two ends) and the indices ``(m,)`` of the padded obstacles whose box grown by their clearance +
+    5 cm meets the leg's box."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     n = max(2, int(math.ceil(float(np.linalg.norm(b - a)) / step)) + 1)
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    boxes = _boxes(obstacles)
-    hit = ((boxes[:, 0] <= hi[0]) & (lo[0] <= boxes[:, 2]) & (boxes[:, 1] <= hi[1]) & (lo[1] <= boxes[:, 3]))
-    near = [obstacles[k] for k in np.flatnonzero(hit)]
-    return a + np.linspace(0.0, 1.0, n)[:, None] * (b - a), near
+    boxes = _table(obstacles).boxes
+    near = np.all(boxes[:, :2] <= np.maximum(a, b), axis=1) & np.all(np.minimum(a, b) <= boxes[:, 2:], axis=1)
+    return a, b, n, np.flatnonzero(near)
 
 
-_BOXES: dict = {}
+def _points(a: np.ndarray, b: np.ndarray, n: int, every: int = 1) -> np.ndarray:
+    """Every ``every``-th of the ``n`` sample points of the leg ``a``–``b`` and the last, ``(k, 2)``."""
+    return a + _fractions(n, every) * (b - a)
 
 
-def _boxes(obstacles: Sequence[Padded]) -> np.ndarray:
-    """The obstacles' bounding boxes grown by their clearance + 5 cm, ``(k, 4)`` — as :func:`_box_near` tests them —
-    computed once per obstacle list (kept while the list lives; a plan and a run each test one list thousands of
-    times)."""
+@functools.lru_cache(maxsize=4096)
+def _fractions(n: int, every: int) -> np.ndarray:
+    """Where along a leg of ``n`` sample points (``np.linspace(0, 1, n)``) every ``every``-th one and the last lie,
+    ``(k, 1)``, read-only: remembered, as the legs of a plan have a few hundred lengths among thousands of legs."""
+    fractions = np.linspace(0.0, 1.0, n)[np.append(np.arange(0, n - 1, every), n - 1), None]
+    fractions.flags.writeable = False
+    return fractions
+
+
+class _Table(NamedTuple):
+    """A list of ``k`` padded obstacles as arrays. ``boxes`` ``(k, 4)``: their bounding boxes grown by their clearance
+    + 5 cm (which :func:`_leg` tests); ``wall`` ``(k,)``: whether each is a wall segment; ``walls`` ``(k, 6)``: for a
+    segment its start ``(x, y)``, end − start, squared length (1 for a segment of no length, whose end − start is
+    zero) and clearance (zeros for other shapes)."""
+
+    boxes: np.ndarray
+    wall: np.ndarray
+    walls: np.ndarray
+
+
+_TABLES: dict = {}
+
+
+def _table(obstacles: Sequence[Padded]) -> _Table:
+    """The :class:`_Table` of ``obstacles``, made once per obstacle list (kept while the list lives; a plan and a run
+    each measure one list thousands of times)."""
     key = id(obstacles)
-    held = _BOXES.get(key)
+    held = _TABLES.get(key)
     if held is not None and held[0] is obstacles:
         return held[1]
     boxes = np.array([(lambda x0, y0, x1, y1, g: (x0 - g, y0 - g, x1 + g, y1 + g))(*bounds(s), c + 0.05)
                       for s, c in obstacles], dtype=float).reshape(-1, 4)
-    if len(_BOXES) > 64:
-        _BOXES.clear()
-    _BOXES[key] = (obstacles, boxes)
-    return boxes
-
-
-def _box_near(box, lo, hi, grow: float) -> bool:
-    x0, y0, x1, y1 = box
-    return x0 - grow <= hi[0] and lo[0] <= x1 + grow and y0 - grow <= hi[1] and lo[1] <= y1 + grow
+    wall = np.array([isinstance(s, Segment) for s, _ in obstacles], dtype=bool)
+    ends = np.array([(s.start, s.end) if isinstance(s, Segment) else ((0.0, 0.0), (0.0, 0.0)) for s, _ in obstacles],
+                    dtype=float).reshape(-1, 2, 2)
+    ab = ends[:, 1] - ends[:, 0]
+    denom = ab[:, 0] * ab[:, 0] + ab[:, 1] * ab[:, 1]
+    clearance = np.array([c for _, c in obstacles], dtype=float)
+    walls = np.column_stack([ends[:, 0], ab, np.where(denom > 0, denom, 1.0), np.where(wall, clearance, 0.0)])
+    table = _Table(boxes, wall, walls)
+    if len(_TABLES) > 64:
+        _TABLES.clear()
+    _TABLES[key] = (obstacles, table)
+    return table
 
 
 def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: float, start, goal,
