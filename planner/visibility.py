@@ -59,51 +59,44 @@ LEAD = 0.06
 def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
     """Slack ``(...,)`` of ``points`` ``(..., 2)``: min over padded obstacles of distance − clearance (m);
     negative inside a cushion."""
-    return _slack(points, obstacles, np.arange(len(obstacles)))
-
-
-def _slack(points, obstacles: Sequence[Padded], which: np.ndarray) -> np.ndarray:
-    """:func:`slack` over the obstacles ``obstacles[which]`` only (``which`` ``(m,)`` int). The walls are measured
-    all at once (:func:`_walls_slack`, in chunks of at most 2 million point-wall pairs), the other shapes one by
-    one."""
     p = np.asarray(points, dtype=float)
     table = _table(obstacles)
     out = np.full(p.shape[:-1], np.inf)
-    for k in which[~table.wall[which]].tolist():
+    for k in np.flatnonzero(~table.wall).tolist():
         shape, clearance = obstacles[k]
         out = np.minimum(out, distance(p, shape) - clearance)
-    walls = table.walls[which[table.wall[which]]]
-    if len(walls):
-        flat = p.reshape(-1, 2)
-        chunk = max(1, 2_000_000 // max(1, len(flat)))
-        least = out.reshape(-1)
-        for k in range(0, len(walls), chunk):
-            least = np.minimum(least, _walls_slack(flat, walls[k:k + chunk]).min(axis=1))
-        out = least.reshape(out.shape)
+    if table.wall.any():
+        out = np.minimum(out, _walls_slack(p.reshape(-1, 2), table.walls[table.wall]).reshape(out.shape))
     return out
 
 
-def _walls_slack(p: np.ndarray, walls: np.ndarray) -> np.ndarray:
-    """Distance − clearance ``(n, m)`` (m) from the points ``p`` ``(n, 2)`` to the walls ``walls`` ``(m, 6)`` (rows of
-    :attr:`_Table.walls`), all at once: a large world has hundreds of walls, and one NumPy call a wall cost more
-    than the sums. The arithmetic of :func:`robots.geometry.segment_distance` (t clipped to the wall, 0 on a wall
-    of no length, whose ``ab`` is zero), written out per coordinate."""
-    rx = p[:, 0:1] - walls[:, 0]  # (n, m)
-    ry = p[:, 1:2] - walls[:, 1]
-    t = np.minimum(np.maximum((rx * walls[:, 2] + ry * walls[:, 3]) / walls[:, 4], 0.0), 1.0)
-    dx = rx - t * walls[:, 2]
-    dy = ry - t * walls[:, 3]
-    return np.sqrt(dx * dx + dy * dy) - walls[:, 5]
+def _walls_slack(p: np.ndarray, walls: np.ndarray, near: np.ndarray | None = None) -> np.ndarray:
+    """min over the walls ``walls`` ``(m, 6)`` (rows of :attr:`_Table.walls`) of distance − clearance (m) at the
+    points ``p`` ``(n, 2)``, ``(n,)``; with ``near`` ``(n, m)`` bool, over the walls near each point only. All walls
+    at once, in chunks of at most 2 million point-wall pairs: a large world has hundreds of walls, and one NumPy
+    call a wall cost more than the sums. The arithmetic of :func:`robots.geometry.segment_distance` (t clipped to
+    the wall, 0 on a wall of no length, whose end − start is zero), written out per coordinate."""
+    out = np.full(len(p), np.inf)
+    chunk = max(1, 2_000_000 // max(1, len(p)))
+    for k in range(0, len(walls), chunk):
+        w = walls[k:k + chunk]
+        rx = p[:, 0:1] - w[:, 0]  # (n, m)
+        ry = p[:, 1:2] - w[:, 1]
+        t = np.minimum(np.maximum((rx * w[:, 2] + ry * w[:, 3]) / w[:, 4], 0.0), 1.0)
+        dx = rx - t * w[:, 2]
+        dy = ry - t * w[:, 3]
+        s = np.sqrt(dx * dx + dy * dy) - w[:, 5]
+        if near is not None:
+            s = np.where(near[:, k:k + chunk], s, np.inf)
+        out = np.minimum(out, s.min(axis=1))
+    return out
 
 
 def segment_slack(a, b, obstacles: Sequence[Padded], step: float = STEP) -> float:
     """Least slack (m) of the points of segment ``a``–``b``, sampled every ``step`` (the slack is 1-Lipschitz,
     so the true least is within ``step / 2`` of this). Only obstacles whose grown box meets the segment's
     box are measured."""
-    a, b, n, near = _leg(a, b, obstacles, step)
-    if not len(near):
-        return math.inf
-    return float(_slack(_points(a, b, n), obstacles, near).min())
+    return float(_legs_slack(*_legs([(a, b)], obstacles, step), obstacles, every=1)[0])
 
 
 def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float = STEP, every: int = 16) -> bool:
@@ -113,36 +106,75 @@ def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float =
     close to a measured one) is ``>= least``, every sample point is clear. Only in between are all measured. A
     long leg of a large world has thousands of sample points near dozens of walls; most legs are decided on a
     sixteenth of them (issue 35: planning a 4 m world took seconds)."""
-    a, b, n, near = _leg(a, b, obstacles, step)
-    if not len(near):
-        return math.inf >= least
-    pts = _points(a, b, n, every)
-    coarse = float(_slack(pts, obstacles, near).min())
-    if coarse < least:
-        return False
-    spacing = float(np.linalg.norm(pts[-1] - pts[0])) / (n - 1)
-    if coarse - (every / 2) * spacing >= least:
-        return True
-    return float(_slack(_points(a, b, n), obstacles, near).min()) >= least
+    return legs_clear([(a, b, least)], obstacles, step, every)[0]
 
 
-def _leg(a, b, obstacles: Sequence[Padded], step: float):
-    """The ends ``a``, ``b`` of a leg as float arrays ``(2,)``, its number of sample points ``n`` (every ``step``,
-    at least its two ends) and the indices ``(m,)`` of the padded obstacles whose box grown by their clearance +
-    5 cm meets the leg's box."""
-    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    n = max(2, int(math.ceil(float(np.linalg.norm(b - a)) / step)) + 1)
-    boxes = _table(obstacles).boxes
-    near = np.all(boxes[:, :2] <= np.maximum(a, b), axis=1) & np.all(np.minimum(a, b) <= boxes[:, 2:], axis=1)
-    return a, b, n, np.flatnonzero(near)
+def legs_clear(legs: Sequence, obstacles: Sequence[Padded], step: float = STEP, every: int = 16) -> list[bool]:
+    """:func:`segment_clear` of each leg ``(a, b, least)`` of ``legs``, the same answers, measured together: a few
+    NumPy calls for all the legs instead of a few for each (:func:`taut` asks thousands of legs, in runs of
+    candidates of which it needs the first clear one)."""
+    if not legs:
+        return []
+    a, b, n, near = _legs([(a, b) for a, b, _ in legs], obstacles, step)
+    coarse = _legs_slack(a, b, n, near, obstacles, every)
+    answers: list = [None] * len(legs)
+    finer = []
+    for i, (_, _, least) in enumerate(legs):
+        if not near[i].any():
+            answers[i] = math.inf >= least
+            continue
+        least_seen = float(coarse[i])
+        if least_seen < least:
+            answers[i] = False
+            continue
+        first, last = a[i] + _fractions(n[i], every)[[0, -1]] * (b[i] - a[i])
+        if least_seen - (every / 2) * (float(np.linalg.norm(last - first)) / (n[i] - 1)) >= least:
+            answers[i] = True
+        else:
+            finer.append(i)
+    if finer:
+        full = _legs_slack(a[finer], b[finer], [n[i] for i in finer], near[finer], obstacles, every=1)
+        for i, s in zip(finer, full.tolist()):
+            answers[i] = s >= legs[i][2]
+    return answers
 
 
-def _points(a: np.ndarray, b: np.ndarray, n: int, every: int = 1) -> np.ndarray:
-    """Every ``every``-th of the ``n`` sample points of the leg ``a``–``b`` and the last, ``(k, 2)``."""
-    return a + _fractions(n, every) * (b - a)
+def _legs(pairs: Sequence, obstacles: Sequence[Padded], step: float):
+    """The legs ``pairs`` (``(a, b)`` each) as their ends ``a``, ``b`` ``(L, 2)``, their numbers of sample points
+    ``n`` (every ``step``, at least the two ends; a list of ``L`` ints) and ``near`` ``(L, k)`` bool: the padded
+    obstacles whose box grown by their clearance + 5 cm meets each leg's box."""
+    a = np.array([p for p, _ in pairs], dtype=float).reshape(-1, 2)
+    b = np.array([q for _, q in pairs], dtype=float).reshape(-1, 2)
+    n = [max(2, int(math.ceil(float(np.linalg.norm(q - p)) / step)) + 1) for p, q in zip(a, b)]
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    x0, y0, x1, y1 = _table(obstacles).boxes
+    near = (x0 <= hi[:, 0:1]) & (y0 <= hi[:, 1:2]) & (lo[:, 0:1] <= x1) & (lo[:, 1:2] <= y1)
+    return a, b, n, near
 
 
-@functools.lru_cache(maxsize=4096)
+def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray, obstacles: Sequence[Padded],
+                every: int) -> np.ndarray:
+    """Least slack ``(L,)`` (m) over every ``every``-th sample point (and the last) of each leg ``a``–``b`` (as from
+    :func:`_legs`), measured to the obstacles near it (inf if none is). The points of all legs are measured against
+    the walls near any of them at once, a wall counting only for the legs it is near; other shapes leg by leg."""
+    fractions = [_fractions(k, every) for k in n]
+    counts = [len(f) for f in fractions]
+    leg = np.repeat(np.arange(len(n)), counts)
+    p = a[leg] + np.concatenate(fractions) * (b - a)[leg]  # (N, 2)
+    starts = np.cumsum([0] + counts[:-1])
+    table = _table(obstacles)
+    walls = np.flatnonzero(near.any(axis=0) & table.wall)
+    least = np.full(len(p), np.inf)
+    if len(walls):
+        least = _walls_slack(p, table.walls[walls], near[leg][:, walls])
+    out = np.minimum.reduceat(least, starts)
+    for i, k in zip(*np.nonzero(near & ~table.wall)):
+        shape, clearance = obstacles[k]
+        out[i] = min(out[i], float((distance(p[starts[i]:starts[i] + counts[i]].copy(), shape) - clearance).min()))
+    return out
+
+
+@functools.lru_cache(maxsize=1024)
 def _fractions(n: int, every: int) -> np.ndarray:
     """Where along a leg of ``n`` sample points (``np.linspace(0, 1, n)``) every ``every``-th one and the last lie,
     ``(k, 1)``, read-only: remembered, as the legs of a plan have a few hundred lengths among thousands of legs."""
@@ -152,10 +184,10 @@ def _fractions(n: int, every: int) -> np.ndarray:
 
 
 class _Table(NamedTuple):
-    """A list of ``k`` padded obstacles as arrays. ``boxes`` ``(k, 4)``: their bounding boxes grown by their clearance
-    + 5 cm (which :func:`_leg` tests); ``wall`` ``(k,)``: whether each is a wall segment; ``walls`` ``(k, 6)``: for a
-    segment its start ``(x, y)``, end − start, squared length (1 for a segment of no length, whose end − start is
-    zero) and clearance (zeros for other shapes)."""
+    """A list of ``k`` padded obstacles as arrays. ``boxes`` ``(4, k)``: their bounding boxes ``x0, y0, x1, y1``
+    grown by their clearance + 5 cm (which :func:`_legs` tests); ``wall`` ``(k,)``: whether each is a wall segment;
+    ``walls`` ``(k, 6)``: for a segment its start ``(x, y)``, end − start, squared length (1 for a segment of no
+    length, whose end − start is zero) and clearance (zeros for other shapes)."""
 
     boxes: np.ndarray
     wall: np.ndarray
@@ -173,7 +205,7 @@ def _table(obstacles: Sequence[Padded]) -> _Table:
     if held is not None and held[0] is obstacles:
         return held[1]
     boxes = np.array([(lambda x0, y0, x1, y1, g: (x0 - g, y0 - g, x1 + g, y1 + g))(*bounds(s), c + 0.05)
-                      for s, c in obstacles], dtype=float).reshape(-1, 4)
+                      for s, c in obstacles], dtype=float).reshape(-1, 4).T.copy()
     wall = np.array([isinstance(s, Segment) for s, _ in obstacles], dtype=bool)
     ends = np.array([(s.start, s.end) if isinstance(s, Segment) else ((0.0, 0.0), (0.0, 0.0)) for s, _ in obstacles],
                     dtype=float).reshape(-1, 2, 2)
@@ -267,6 +299,7 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
     n = len(points)
     floor = np.minimum(slacks, margin)
     seen: dict = {}  # (a, c, least) -> whether the leg a–c is clear
+    lengths: dict = {}  # (a, c) -> length of the leg a–c
     # A corner: (point, its slack capped at margin, the path index whose stretch it stands for).
     Corner = tuple
 
@@ -274,41 +307,67 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
         i, j = sorted((a[2], c[2]))
         return min(float(floor[i:j + 1].min()), a[1], c[1]) - tolerance
 
-    def clear(a: Corner, c: Corner, stretch=None) -> bool:
-        """Whether the leg a–c is clear; ``stretch`` (two corners) widens the path stretch whose least slack
-        counts, for a corner that replaces those between them."""
-        least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
-        key = (a[0].tobytes(), c[0].tobytes(), least)  # the passes below ask the same legs again and again
-        if key not in seen:
-            seen[key] = segment_clear(a[0], c[0], obstacles, least)
-        return seen[key]
+    def clear_all(legs) -> list[bool]:
+        """Whether each leg ``(a, c, stretch)`` is clear; ``stretch`` (two corners, or None) widens the path stretch
+        whose least slack counts, for a corner that replaces those between them. The legs not asked before are
+        measured together (:func:`legs_clear`)."""
+        keys = []
+        for a, c, stretch in legs:
+            least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
+            keys.append((a[0].tobytes(), c[0].tobytes(), least))  # the passes below ask the same legs again and again
+        new = {key: (a[0], c[0], key[2]) for key, (a, c, _) in zip(keys, legs) if key not in seen}
+        seen.update(zip(new, legs_clear(list(new.values()), obstacles)))
+        return [seen[key] for key in keys]
+
+    def clear(a: Corner, c: Corner) -> bool:
+        return clear_all([(a, c, None)])[0]
 
     def at(i: int) -> Corner:
         return (points[i], float(floor[i]), i)
 
+    def leg(p: Corner, q: Corner):
+        key = (p[0].tobytes(), q[0].tobytes())  # via below measures the same legs for every corner it tries
+        if key not in lengths:
+            lengths[key] = np.linalg.norm(q[0] - p[0])
+        return lengths[key]
+
     def length(ks) -> float:
-        return float(sum(np.linalg.norm(q[0] - p[0]) for p, q in zip(ks[:-1], ks[1:])))
+        return float(sum(leg(p, q) for p, q in zip(ks[:-1], ks[1:])))
+
+    def reach(i: int) -> int:
+        """The last path index j such that the legs from point i to each of i + 2 … j are clear (i + 1 if the leg to
+        i + 2 is not). The legs ahead are asked a few at a time, twice as many each time, up to 32."""
+        j, block = i + 1, 4
+        while j + 1 < n:
+            ahead = range(j + 1, min(n, j + 1 + block))
+            ok = clear_all([(at(i), at(k), None) for k in ahead])
+            if not all(ok):
+                return j + ok.index(False)
+            j, block = ahead[-1], min(2 * block, 32)
+        return j
 
     def via(a: Corner, c: Corner, current: float, extra=()):
         """The point b (a path point between a and c, or one of ``extra``) that makes a → b → c shortest with
-        both legs clear, if shorter than ``current``; None if there is none."""
+        both legs clear, if shorter than ``current``; None if there is none. The points are tried shortest first,
+        a few at a time, twice as many each time, up to 32."""
         options = [at(i) for i in range(a[2] + 1, c[2])] + list(extra)
-        options.sort(key=lambda b: length([a, b, c]))
-        for b in options:
-            if length([a, b, c]) >= current - 1e-12:
-                return None
-            if clear(a, b, (a, c)) and clear(b, c, (a, c)):
-                return b
+        total = [length([a, b, c]) for b in options]
+        shorter = [options[k] for k in sorted(range(len(options)), key=total.__getitem__) if total[k] < current - 1e-12]
+        start, block = 0, 2
+        while start < len(shorter):
+            tried = shorter[start:start + block]
+            first = [b for b, ok in zip(tried, clear_all([(a, b, (a, c)) for b in tried])) if ok]
+            for b, ok in zip(first, clear_all([(b, c, (a, c)) for b in first])):
+                if ok:
+                    return b
+            start, block = start + block, min(2 * block, 32)
         return None
 
     corners = [at(0)]
     i = 0
     while i < n - 1:
-        j = i + 1
-        while j + 1 < n and clear(at(i), at(j + 1)):
-            j += 1
-        corners.append(at(j))
-        i = j
+        i = reach(i)
+        corners.append(at(i))
     for _ in range(8):
         changed = False
         k = 1
