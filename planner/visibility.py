@@ -235,13 +235,9 @@ def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: fl
     s = np.full(W.shape, -np.inf)
     s[iy, ix] = slack(centres, obstacles)
     penalty = 1.0 + weight * np.clip((margin - s) / margin, 0.0, None)  # (ny, nx), inf outside
-    parent = _dijkstra(inside, penalty, first, last)
-    if parent is None:
+    cells = _cheapest_cells(inside, penalty, first, last)
+    if cells is None:
         return None
-    cells = [last]
-    while cells[-1] != first:
-        cells.append(parent[cells[-1]])
-    cells.reverse()
     pts = np.array([((x + 0.5) * cell, (y + 0.5) * cell) for y, x in cells])
     pts = np.vstack([np.asarray(start, float)[None, :2], pts, np.asarray(goal, float)[None, :2]])
     ends = slack(pts[[0, -1]], obstacles)
@@ -251,35 +247,55 @@ def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: fl
 _MOVES = ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1))
 
 
-def _dijkstra(inside: np.ndarray, penalty: np.ndarray, first, last) -> dict | None:
-    """Parents of the cheapest 8-connected path over ``inside`` cells from ``first`` to ``last`` (``(iy, ix)``),
-    a step costing its length times the mean ``penalty`` of its two cells; a diagonal step needs both
-    cells it passes between inside (no corner cutting)."""
+def _cheapest_cells(inside: np.ndarray, penalty: np.ndarray, first, last) -> list[tuple[int, int]] | None:
+    """The cells ``(iy, ix)``, in order, of the cheapest 8-connected path over ``inside`` cells from ``first`` to
+    ``last``, a step costing its length times the mean ``penalty`` of its two cells; a diagonal step needs both
+    cells it passes between inside (no corner cutting). None if there is none.
+
+    Dijkstra's search, its heap ordered by (cost, iy, ix): of paths of equal cost it keeps the one that order
+    reaches first. It runs on flat Python lists with a one-cell frame that is not inside (no bounds checks, no
+    NumPy scalars): a large world's route has tens of thousands of cells."""
     ny, nx = inside.shape
-    cost = {first: 0.0}
-    parent = {first: first}
-    heap = [(0.0, first)]
-    done = set()
+    stride = nx + 2
+    framed = np.zeros((ny + 2, nx + 2), dtype=bool)
+    framed[1:-1, 1:-1] = inside
+    ok = framed.ravel().tolist()
+    weights = np.zeros((ny + 2, nx + 2))
+    weights[1:-1, 1:-1] = penalty
+    pen = weights.ravel().tolist()
+    # A move: the step to the next cell, the steps to the two cells a diagonal passes between (0 if straight), and
+    # half its length (the mean of the two penalties is taken with it).
+    moves = [(dy * stride + dx, dx if dy and dx else 0, dy * stride, (1.4142135623730951 if dy and dx else 1.0) * 0.5)
+             for dy, dx in _MOVES]
+    start, goal = (first[0] + 1) * stride + first[1] + 1, (last[0] + 1) * stride + last[1] + 1
+    cost = [math.inf] * len(ok)
+    cost[start] = 0.0
+    parent = [start] * len(ok)
+    done = [False] * len(ok)
+    heap = [(0.0, start)]
     while heap:
         c, here = heapq.heappop(heap)
-        if here in done:
+        if done[here]:
             continue
-        if here == last:
-            return parent
-        done.add(here)
-        y, x = here
-        for dy, dx in _MOVES:
-            v, u = y + dy, x + dx
-            if not (0 <= v < ny and 0 <= u < nx and inside[v, u]):
+        if here == goal:
+            break
+        done[here] = True
+        p = pen[here]
+        for step, side, other, half in moves:
+            there = here + step
+            if not ok[there] or (side and not (ok[here + side] and ok[here + other])):
                 continue
-            if dy and dx and not (inside[y, u] and inside[v, x]):
-                continue
-            nc = c + (1.4142135623730951 if dy and dx else 1.0) * 0.5 * (penalty[y, x] + penalty[v, u])
-            if nc < cost.get((v, u), math.inf):
-                cost[(v, u)] = nc
-                parent[(v, u)] = here
-                heapq.heappush(heap, (nc, (v, u)))
-    return None
+            nc = c + half * (p + pen[there])
+            if nc < cost[there]:
+                cost[there] = nc
+                parent[there] = here
+                heapq.heappush(heap, (nc, there))
+    else:
+        return None
+    cells = [goal]
+    while cells[-1] != start:
+        cells.append(parent[cells[-1]])
+    return [(f // stride - 1, f % stride - 1) for f in reversed(cells)]
 
 
 def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], margin: float = MARGIN,
