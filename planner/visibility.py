@@ -116,19 +116,19 @@ def legs_clear(legs: Sequence, obstacles: Sequence[Padded], step: float = STEP, 
     if not legs:
         return []
     a, b, n, near = _legs([(a, b) for a, b, _ in legs], obstacles, step)
-    coarse = _legs_slack(a, b, n, near, obstacles, every)
+    coarse = _legs_slack(a, b, n, near, obstacles, every).tolist()
+    measured = near.any(axis=1).tolist()
+    span = (a + 1.0 * (b - a)) - (a + 0.0 * (b - a))  # last sample point − first, as _points makes them
     answers: list = [None] * len(legs)
     finer = []
     for i, (_, _, least) in enumerate(legs):
-        if not near[i].any():
+        if not measured[i]:
             answers[i] = math.inf >= least
             continue
-        least_seen = float(coarse[i])
-        if least_seen < least:
+        if coarse[i] < least:
             answers[i] = False
             continue
-        first, last = a[i] + _fractions(n[i], every)[[0, -1]] * (b[i] - a[i])
-        if least_seen - (every / 2) * (float(np.linalg.norm(last - first)) / (n[i] - 1)) >= least:
+        if coarse[i] - (every / 2) * (float(np.linalg.norm(span[i])) / (n[i] - 1)) >= least:
             answers[i] = True
         else:
             finer.append(i)
@@ -166,7 +166,7 @@ def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray
     walls = np.flatnonzero(near.any(axis=0) & table.wall)
     least = np.full(len(p), np.inf)
     if len(walls):
-        least = _walls_slack(p, table.walls[walls], near[leg][:, walls])
+        least = _walls_slack(p, table.walls[walls], near[:, walls][leg])
     out = np.minimum.reduceat(least, starts)
     for i, k in zip(*np.nonzero(near & ~table.wall)):
         shape, clearance = obstacles[k]
@@ -316,12 +316,15 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
     floor = np.minimum(slacks, margin)
     seen: dict = {}  # (a, c, least) -> whether the leg a–c is clear
     lengths: dict = {}  # (a, c) -> length of the leg a–c
+    floors: dict = {}  # (i, j) -> least capped slack of the path points i … j
     # A corner: (point, its slack capped at margin, the path index whose stretch it stands for).
     Corner = tuple
 
     def need(a: Corner, c: Corner) -> float:
         i, j = sorted((a[2], c[2]))
-        return min(float(floor[i:j + 1].min()), a[1], c[1]) - tolerance
+        if (i, j) not in floors:  # the passes below ask the same stretches again and again
+            floors[(i, j)] = float(floor[i:j + 1].min())
+        return min(floors[(i, j)], a[1], c[1]) - tolerance
 
     def clear_all(legs) -> list[bool]:
         """Whether each leg ``(a, c, stretch)`` is clear; ``stretch`` (two corners, or None) widens the path stretch
