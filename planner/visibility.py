@@ -118,7 +118,8 @@ def legs_clear(legs: Sequence, obstacles: Sequence[Padded], step: float = STEP, 
     a, b, n, near = _legs([(a, b) for a, b, _ in legs], obstacles, step)
     coarse = _legs_slack(a, b, n, near, obstacles, every).tolist()
     measured = near.any(axis=1).tolist()
-    span = (a + 1.0 * (b - a)) - (a + 0.0 * (b - a))  # last sample point − first, as _points makes them
+    # The last sample point less the first, each made as _legs_slack makes them (at fractions 1 and 0).
+    span = (a + 1.0 * (b - a)) - (a + 0.0 * (b - a))
     answers: list = [None] * len(legs)
     finer = []
     for i, (_, _, least) in enumerate(legs):
