@@ -28,9 +28,11 @@ search of :mod:`planner.search`); ``checkpoints="thesis"`` in :func:`planner.pla
 
 from __future__ import annotations
 
+import functools
 import heapq
 import math
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -58,44 +60,43 @@ def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
     """Slack ``(...,)`` of ``points`` ``(..., 2)``: min over padded obstacles of distance − clearance (m);
     negative inside a cushion."""
     p = np.asarray(points, dtype=float)
+    table = _table(obstacles)
     out = np.full(p.shape[:-1], np.inf)
-    walls = [(shape, clearance) for shape, clearance in obstacles if isinstance(shape, Segment)]
-    for shape, clearance in obstacles:
-        if not isinstance(shape, Segment):
-            out = np.minimum(out, distance(p, shape) - clearance)
-    if walls:
-        flat = p.reshape(-1, 2)
-        chunk = max(1, 2_000_000 // max(1, len(flat)))
-        least = out.reshape(-1)
-        for k in range(0, len(walls), chunk):
-            least = np.minimum(least, _walls_slack(flat, walls[k:k + chunk]))
-        out = least.reshape(out.shape)
+    for k in np.flatnonzero(~table.wall).tolist():
+        shape, clearance = obstacles[k]
+        out = np.minimum(out, distance(p, shape) - clearance)
+    if table.wall.any():
+        out = np.minimum(out, _walls_slack(p.reshape(-1, 2), table.walls[table.wall]).reshape(out.shape))
     return out
 
 
-def _walls_slack(p: np.ndarray, walls: list) -> np.ndarray:
-    """min over the wall segments of distance − clearance at ``p`` ``(n, 2)``, all walls at once (the arithmetic of
-    :func:`robots.geometry.segment_distance`, a wall to a column): a large world has hundreds of walls, and one
-    call a wall cost more than the sums."""
-    a = np.array([w.start for w, _ in walls], dtype=float)  # (m, 2)
-    ab = np.array([w.end for w, _ in walls], dtype=float) - a
-    denom = np.einsum("mi,mi->m", ab, ab)
-    rel = p[:, None, :] - a[None]  # (n, m, 2)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(denom > 0, np.clip(np.einsum("nmi,mi->nm", rel, ab) / denom, 0.0, 1.0), 0.0)
-    d = rel - t[..., None] * ab[None]
-    clearance = np.array([c for _, c in walls], dtype=float)
-    return np.min(np.sqrt(np.einsum("nmi,nmi->nm", d, d)) - clearance, axis=1)
+def _walls_slack(p: np.ndarray, walls: np.ndarray, near: np.ndarray | None = None) -> np.ndarray:
+    """min over the walls ``walls`` ``(m, 6)`` (rows of :attr:`_Table.walls`) of distance − clearance (m) at the
+    points ``p`` ``(n, 2)``, ``(n,)``; with ``near`` ``(n, m)`` bool, over the walls near each point only. All walls
+    at once, in chunks of at most 2 million point-wall pairs: a large world has hundreds of walls, and one NumPy
+    call a wall cost more than the sums. The arithmetic of :func:`robots.geometry.segment_distance` (t clipped to
+    the wall, 0 on a wall of no length, whose end − start is zero), written out per coordinate."""
+    out = np.full(len(p), np.inf)
+    chunk = max(1, 2_000_000 // max(1, len(p)))
+    for k in range(0, len(walls), chunk):
+        w = walls[k:k + chunk]
+        rx = p[:, 0:1] - w[:, 0]  # (n, m)
+        ry = p[:, 1:2] - w[:, 1]
+        t = np.minimum(np.maximum((rx * w[:, 2] + ry * w[:, 3]) / w[:, 4], 0.0), 1.0)
+        dx = rx - t * w[:, 2]
+        dy = ry - t * w[:, 3]
+        s = np.sqrt(dx * dx + dy * dy) - w[:, 5]
+        if near is not None:
+            s = np.where(near[:, k:k + chunk], s, np.inf)
+        out = np.minimum(out, s.min(axis=1))
+    return out
 
 
 def segment_slack(a, b, obstacles: Sequence[Padded], step: float = STEP) -> float:
     """Least slack (m) of the points of segment ``a``–``b``, sampled every ``step`` (the slack is 1-Lipschitz,
     so the true least is within ``step / 2`` of this). Only obstacles whose grown box meets the segment's
     box are measured."""
-    pts, near = _samples(a, b, obstacles, step)
-    if not near:
-        return math.inf
-    return float(slack(pts, near).min())
+    return float(_legs_slack(*_legs([(a, b)], obstacles, step), obstacles, every=1)[0])
 
 
 def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float = STEP, every: int = 16) -> bool:
@@ -105,54 +106,119 @@ def segment_clear(a, b, obstacles: Sequence[Padded], least: float, step: float =
     close to a measured one) is ``>= least``, every sample point is clear. Only in between are all measured. A
     long leg of a large world has thousands of sample points near dozens of walls; most legs are decided on a
     sixteenth of them (issue 35: planning a 4 m world took seconds)."""
-    pts, near = _samples(a, b, obstacles, step)
-    if not near:
-        return math.inf >= least
-    n = len(pts)
-    idx = np.unique(np.append(np.arange(0, n, every), n - 1))
-    coarse = float(slack(pts[idx], near).min())
-    if coarse < least:
-        return False
-    spacing = float(np.linalg.norm(pts[-1] - pts[0])) / (n - 1)
-    if coarse - (every / 2) * spacing >= least:
-        return True
-    return float(slack(pts, near).min()) >= least
+    return legs_clear([(a, b, least)], obstacles, step, every)[0]
 
 
-def _samples(a, b, obstacles: Sequence[Padded], step: float):
-    """The sample points ``(n, 2)`` of segment ``a``–``b`` every ``step`` (at least its two ends) and the padded
-    obstacles whose box grown by their clearance + 5 cm meets the segment's box."""
-    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    n = max(2, int(math.ceil(float(np.linalg.norm(b - a)) / step)) + 1)
+def legs_clear(legs: Sequence, obstacles: Sequence[Padded], step: float = STEP, every: int = 16) -> list[bool]:
+    """:func:`segment_clear` of each leg ``(a, b, least)`` of ``legs``, the same answers, measured together: a few
+    NumPy calls for all the legs instead of a few for each (:func:`taut` asks thousands of legs, in runs of
+    candidates of which it needs the first clear one)."""
+    if not legs:
+        return []
+    a, b, n, near = _legs([(a, b) for a, b, _ in legs], obstacles, step)
+    coarse = _legs_slack(a, b, n, near, obstacles, every).tolist()
+    measured = near.any(axis=1).tolist()
+    # The last sample point less the first, each made as _legs_slack makes them (at fractions 1 and 0).
+    span = (a + 1.0 * (b - a)) - (a + 0.0 * (b - a))
+    answers: list = [None] * len(legs)
+    finer = []
+    for i, (_, _, least) in enumerate(legs):
+        if not measured[i]:
+            answers[i] = math.inf >= least
+            continue
+        if coarse[i] < least:
+            answers[i] = False
+            continue
+        if coarse[i] - (every / 2) * (float(np.linalg.norm(span[i])) / (n[i] - 1)) >= least:
+            answers[i] = True
+        else:
+            finer.append(i)
+    if finer:
+        full = _legs_slack(a[finer], b[finer], [n[i] for i in finer], near[finer], obstacles, every=1)
+        for i, s in zip(finer, full.tolist()):
+            answers[i] = s >= legs[i][2]
+    return answers
+
+
+def _legs(pairs: Sequence, obstacles: Sequence[Padded], step: float):
+    """The legs ``pairs`` (``(a, b)`` each) as their ends ``a``, ``b`` ``(L, 2)``, their numbers of sample points
+    ``n`` (every ``step``, at least the two ends; a list of ``L`` ints) and ``near`` ``(L, k)`` bool: the padded
+    obstacles whose box grown by their clearance + 5 cm meets each leg's box."""
+    a = np.array([p for p, _ in pairs], dtype=float).reshape(-1, 2)
+    b = np.array([q for _, q in pairs], dtype=float).reshape(-1, 2)
+    n = [max(2, int(math.ceil(float(np.linalg.norm(q - p)) / step)) + 1) for p, q in zip(a, b)]
     lo, hi = np.minimum(a, b), np.maximum(a, b)
-    boxes = _boxes(obstacles)
-    hit = ((boxes[:, 0] <= hi[0]) & (lo[0] <= boxes[:, 2]) & (boxes[:, 1] <= hi[1]) & (lo[1] <= boxes[:, 3]))
-    near = [obstacles[k] for k in np.flatnonzero(hit)]
-    return a + np.linspace(0.0, 1.0, n)[:, None] * (b - a), near
+    x0, y0, x1, y1 = _table(obstacles).boxes
+    near = (x0 <= hi[:, 0:1]) & (y0 <= hi[:, 1:2]) & (lo[:, 0:1] <= x1) & (lo[:, 1:2] <= y1)
+    return a, b, n, near
 
 
-_BOXES: dict = {}
+def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray, obstacles: Sequence[Padded],
+                every: int) -> np.ndarray:
+    """Least slack ``(L,)`` (m) over every ``every``-th sample point (and the last) of each leg ``a``–``b`` (as from
+    :func:`_legs`), measured to the obstacles near it (inf if none is). The points of all legs are measured against
+    the walls near any of them at once, a wall counting only for the legs it is near; other shapes leg by leg."""
+    fractions = [_fractions(k, every) for k in n]
+    counts = [len(f) for f in fractions]
+    leg = np.repeat(np.arange(len(n)), counts)
+    p = a[leg] + np.concatenate(fractions) * (b - a)[leg]  # (N, 2)
+    starts = np.cumsum([0] + counts[:-1])
+    table = _table(obstacles)
+    walls = np.flatnonzero(near.any(axis=0) & table.wall)
+    least = np.full(len(p), np.inf)
+    if len(walls):
+        least = _walls_slack(p, table.walls[walls], near[:, walls][leg])
+    out = np.minimum.reduceat(least, starts)
+    for i, k in zip(*np.nonzero(near & ~table.wall)):
+        shape, clearance = obstacles[k]
+        out[i] = min(out[i], float((distance(p[starts[i]:starts[i] + counts[i]].copy(), shape) - clearance).min()))
+    return out
 
 
-def _boxes(obstacles: Sequence[Padded]) -> np.ndarray:
-    """The obstacles' bounding boxes grown by their clearance + 5 cm, ``(k, 4)`` — as :func:`_box_near` tests them —
-    computed once per obstacle list (kept while the list lives; a plan and a run each test one list thousands of
-    times)."""
+@functools.lru_cache(maxsize=1024)
+def _fractions(n: int, every: int) -> np.ndarray:
+    """Where along a leg of ``n`` sample points (``np.linspace(0, 1, n)``) every ``every``-th one and the last lie,
+    ``(k, 1)``, read-only: remembered, as the legs of a plan have a few hundred lengths among thousands of legs."""
+    fractions = np.linspace(0.0, 1.0, n)[np.append(np.arange(0, n - 1, every), n - 1), None]
+    fractions.flags.writeable = False
+    return fractions
+
+
+class _Table(NamedTuple):
+    """A list of ``k`` padded obstacles as arrays. ``boxes`` ``(4, k)``: their bounding boxes ``x0, y0, x1, y1``
+    grown by their clearance + 5 cm (which :func:`_legs` tests); ``wall`` ``(k,)``: whether each is a wall segment;
+    ``walls`` ``(k, 6)``: for a segment its start ``(x, y)``, end − start, squared length (1 for a segment of no
+    length, whose end − start is zero) and clearance (zeros for other shapes)."""
+
+    boxes: np.ndarray
+    wall: np.ndarray
+    walls: np.ndarray
+
+
+_TABLES: dict = {}
+
+
+def _table(obstacles: Sequence[Padded]) -> _Table:
+    """The :class:`_Table` of ``obstacles``, made once per obstacle list (kept while the list lives; a plan and a run
+    each measure one list thousands of times)."""
     key = id(obstacles)
-    held = _BOXES.get(key)
+    held = _TABLES.get(key)
     if held is not None and held[0] is obstacles:
         return held[1]
     boxes = np.array([(lambda x0, y0, x1, y1, g: (x0 - g, y0 - g, x1 + g, y1 + g))(*bounds(s), c + 0.05)
-                      for s, c in obstacles], dtype=float).reshape(-1, 4)
-    if len(_BOXES) > 64:
-        _BOXES.clear()
-    _BOXES[key] = (obstacles, boxes)
-    return boxes
-
-
-def _box_near(box, lo, hi, grow: float) -> bool:
-    x0, y0, x1, y1 = box
-    return x0 - grow <= hi[0] and lo[0] <= x1 + grow and y0 - grow <= hi[1] and lo[1] <= y1 + grow
+                      for s, c in obstacles], dtype=float).reshape(-1, 4).T.copy()
+    wall = np.array([isinstance(s, Segment) for s, _ in obstacles], dtype=bool)
+    ends = np.array([(s.start, s.end) if isinstance(s, Segment) else ((0.0, 0.0), (0.0, 0.0)) for s, _ in obstacles],
+                    dtype=float).reshape(-1, 2, 2)
+    ab = ends[:, 1] - ends[:, 0]
+    denom = ab[:, 0] * ab[:, 0] + ab[:, 1] * ab[:, 1]
+    clearance = np.array([c for _, c in obstacles], dtype=float)
+    walls = np.column_stack([ends[:, 0], ab, np.where(denom > 0, denom, 1.0), np.where(wall, clearance, 0.0)])
+    table = _Table(boxes, wall, walls)
+    if len(_TABLES) > 64:
+        _TABLES.clear()
+    _TABLES[key] = (obstacles, table)
+    return table
 
 
 def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: float, start, goal,
@@ -170,13 +236,9 @@ def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: fl
     s = np.full(W.shape, -np.inf)
     s[iy, ix] = slack(centres, obstacles)
     penalty = 1.0 + weight * np.clip((margin - s) / margin, 0.0, None)  # (ny, nx), inf outside
-    parent = _dijkstra(inside, penalty, first, last)
-    if parent is None:
+    cells = _cheapest_cells(inside, penalty, first, last)
+    if cells is None:
         return None
-    cells = [last]
-    while cells[-1] != first:
-        cells.append(parent[cells[-1]])
-    cells.reverse()
     pts = np.array([((x + 0.5) * cell, (y + 0.5) * cell) for y, x in cells])
     pts = np.vstack([np.asarray(start, float)[None, :2], pts, np.asarray(goal, float)[None, :2]])
     ends = slack(pts[[0, -1]], obstacles)
@@ -186,35 +248,55 @@ def route_path(W: np.ndarray, labels: np.ndarray, route: Sequence[int], cell: fl
 _MOVES = ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1))
 
 
-def _dijkstra(inside: np.ndarray, penalty: np.ndarray, first, last) -> dict | None:
-    """Parents of the cheapest 8-connected path over ``inside`` cells from ``first`` to ``last`` (``(iy, ix)``),
-    a step costing its length times the mean ``penalty`` of its two cells; a diagonal step needs both
-    cells it passes between inside (no corner cutting)."""
+def _cheapest_cells(inside: np.ndarray, penalty: np.ndarray, first, last) -> list[tuple[int, int]] | None:
+    """The cells ``(iy, ix)``, in order, of the cheapest 8-connected path over ``inside`` cells from ``first`` to
+    ``last``, a step costing its length times the mean ``penalty`` of its two cells; a diagonal step needs both
+    cells it passes between inside (no corner cutting). None if there is none.
+
+    Dijkstra's search, its heap ordered by (cost, iy, ix): of paths of equal cost it keeps the one that order
+    reaches first. It runs on flat Python lists with a one-cell frame that is not inside (no bounds checks, no
+    NumPy scalars): a large world's route has tens of thousands of cells."""
     ny, nx = inside.shape
-    cost = {first: 0.0}
-    parent = {first: first}
-    heap = [(0.0, first)]
-    done = set()
+    stride = nx + 2
+    framed = np.zeros((ny + 2, nx + 2), dtype=bool)
+    framed[1:-1, 1:-1] = inside
+    ok = framed.ravel().tolist()
+    weights = np.zeros((ny + 2, nx + 2))
+    weights[1:-1, 1:-1] = penalty
+    pen = weights.ravel().tolist()
+    # A move: the step to the next cell, the steps to the two cells a diagonal passes between (0 if straight), and
+    # half its length (the mean of the two penalties is taken with it).
+    moves = [(dy * stride + dx, dx if dy and dx else 0, dy * stride, (1.4142135623730951 if dy and dx else 1.0) * 0.5)
+             for dy, dx in _MOVES]
+    start, goal = (first[0] + 1) * stride + first[1] + 1, (last[0] + 1) * stride + last[1] + 1
+    cost = [math.inf] * len(ok)
+    cost[start] = 0.0
+    parent = [start] * len(ok)
+    done = [False] * len(ok)
+    heap = [(0.0, start)]
     while heap:
         c, here = heapq.heappop(heap)
-        if here in done:
+        if done[here]:
             continue
-        if here == last:
-            return parent
-        done.add(here)
-        y, x = here
-        for dy, dx in _MOVES:
-            v, u = y + dy, x + dx
-            if not (0 <= v < ny and 0 <= u < nx and inside[v, u]):
+        if here == goal:
+            break
+        done[here] = True
+        p = pen[here]
+        for step, side, other, half in moves:
+            there = here + step
+            if not ok[there] or (side and not (ok[here + side] and ok[here + other])):
                 continue
-            if dy and dx and not (inside[y, u] and inside[v, x]):
-                continue
-            nc = c + (1.4142135623730951 if dy and dx else 1.0) * 0.5 * (penalty[y, x] + penalty[v, u])
-            if nc < cost.get((v, u), math.inf):
-                cost[(v, u)] = nc
-                parent[(v, u)] = here
-                heapq.heappush(heap, (nc, (v, u)))
-    return None
+            nc = c + half * (p + pen[there])
+            if nc < cost[there]:
+                cost[there] = nc
+                parent[there] = here
+                heapq.heappush(heap, (nc, there))
+    else:
+        return None
+    cells = [goal]
+    while cells[-1] != start:
+        cells.append(parent[cells[-1]])
+    return [(f // stride - 1, f % stride - 1) for f in reversed(cells)]
 
 
 def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], margin: float = MARGIN,
@@ -234,48 +316,78 @@ def taut(points: np.ndarray, slacks: np.ndarray, obstacles: Sequence[Padded], ma
     n = len(points)
     floor = np.minimum(slacks, margin)
     seen: dict = {}  # (a, c, least) -> whether the leg a–c is clear
+    lengths: dict = {}  # (a, c) -> length of the leg a–c
+    floors: dict = {}  # (i, j) -> least capped slack of the path points i … j
     # A corner: (point, its slack capped at margin, the path index whose stretch it stands for).
     Corner = tuple
 
     def need(a: Corner, c: Corner) -> float:
         i, j = sorted((a[2], c[2]))
-        return min(float(floor[i:j + 1].min()), a[1], c[1]) - tolerance
+        if (i, j) not in floors:  # the passes below ask the same stretches again and again
+            floors[(i, j)] = float(floor[i:j + 1].min())
+        return min(floors[(i, j)], a[1], c[1]) - tolerance
 
-    def clear(a: Corner, c: Corner, stretch=None) -> bool:
-        """Whether the leg a–c is clear; ``stretch`` (two corners) widens the path stretch whose least slack
-        counts, for a corner that replaces those between them."""
-        least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
-        key = (a[0].tobytes(), c[0].tobytes(), least)  # the passes below ask the same legs again and again
-        if key not in seen:
-            seen[key] = segment_clear(a[0], c[0], obstacles, least)
-        return seen[key]
+    def clear_all(legs) -> list[bool]:
+        """Whether each leg ``(a, c, stretch)`` is clear; ``stretch`` (two corners, or None) widens the path stretch
+        whose least slack counts, for a corner that replaces those between them. The legs not asked before are
+        measured together (:func:`legs_clear`)."""
+        keys = []
+        for a, c, stretch in legs:
+            least = need(a, c) if stretch is None else min(need(*stretch), a[1] - tolerance, c[1] - tolerance)
+            keys.append((a[0].tobytes(), c[0].tobytes(), least))  # the passes below ask the same legs again and again
+        new = {key: (a[0], c[0], key[2]) for key, (a, c, _) in zip(keys, legs) if key not in seen}
+        seen.update(zip(new, legs_clear(list(new.values()), obstacles)))
+        return [seen[key] for key in keys]
+
+    def clear(a: Corner, c: Corner) -> bool:
+        return clear_all([(a, c, None)])[0]
 
     def at(i: int) -> Corner:
         return (points[i], float(floor[i]), i)
 
+    def leg(p: Corner, q: Corner):
+        key = (p[0].tobytes(), q[0].tobytes())  # via below measures the same legs for every corner it tries
+        if key not in lengths:
+            lengths[key] = np.linalg.norm(q[0] - p[0])
+        return lengths[key]
+
     def length(ks) -> float:
-        return float(sum(np.linalg.norm(q[0] - p[0]) for p, q in zip(ks[:-1], ks[1:])))
+        return float(sum(leg(p, q) for p, q in zip(ks[:-1], ks[1:])))
+
+    def reach(i: int) -> int:
+        """The last path index j such that the legs from point i to each of i + 2 … j are clear (i + 1 if the leg to
+        i + 2 is not). The legs ahead are asked a few at a time, twice as many each time, up to 32."""
+        j, block = i + 1, 4
+        while j + 1 < n:
+            ahead = range(j + 1, min(n, j + 1 + block))
+            ok = clear_all([(at(i), at(k), None) for k in ahead])
+            if not all(ok):
+                return j + ok.index(False)
+            j, block = ahead[-1], min(2 * block, 32)
+        return j
 
     def via(a: Corner, c: Corner, current: float, extra=()):
         """The point b (a path point between a and c, or one of ``extra``) that makes a → b → c shortest with
-        both legs clear, if shorter than ``current``; None if there is none."""
+        both legs clear, if shorter than ``current``; None if there is none. The points are tried shortest first,
+        a few at a time, twice as many each time, up to 32."""
         options = [at(i) for i in range(a[2] + 1, c[2])] + list(extra)
-        options.sort(key=lambda b: length([a, b, c]))
-        for b in options:
-            if length([a, b, c]) >= current - 1e-12:
-                return None
-            if clear(a, b, (a, c)) and clear(b, c, (a, c)):
-                return b
+        total = [length([a, b, c]) for b in options]
+        shorter = [options[k] for k in sorted(range(len(options)), key=total.__getitem__) if total[k] < current - 1e-12]
+        start, block = 0, 2
+        while start < len(shorter):
+            tried = shorter[start:start + block]
+            first = [b for b, ok in zip(tried, clear_all([(a, b, (a, c)) for b in tried])) if ok]
+            for b, ok in zip(first, clear_all([(b, c, (a, c)) for b in first])):
+                if ok:
+                    return b
+            start, block = start + block, min(2 * block, 32)
         return None
 
     corners = [at(0)]
     i = 0
     while i < n - 1:
-        j = i + 1
-        while j + 1 < n and clear(at(i), at(j + 1)):
-            j += 1
-        corners.append(at(j))
-        i = j
+        i = reach(i)
+        corners.append(at(i))
     for _ in range(8):
         changed = False
         k = 1

@@ -1,21 +1,22 @@
-"""Planning time of large generated worlds (issue 35: a 4 m warehouse planned in 2.5-3.2 s; the aim is well under a
-second).
+"""Planning time of large generated worlds (issue 35: "planning a 4 m world in well under a second").
 
 Run from the repository root::
 
     python benchmarks/perf/bench_plan_large.py [--seeds 0 1 2] [--repeat 3]
 
-For each ``large:SEED`` world (3-6 m, many rooms) it prints the world's size, the planned route's length and the
-best of ``--repeat`` times of :func:`planner.plan` with the Khepera's padding, each in a fresh cache (the planner
-remembers bitmaps and plans per process), and the same for the stages the issue's speed-up touched: the bitmap
-(:func:`planner.bitmap.rasterise`, which now measures each wall only on the cells near it) and the visible
-checkpoints (:func:`planner.visibility.taut`, whose legs are now decided on a sixteenth of their sample points
-where the slack's Lipschitz bound allows: the same answers). Wall-clock times depend on the machine and its load.
+For each ``large:SEED`` world (2-6 m a side, many rooms) it prints the world's size, the planned route's length and
+the best of ``--repeat`` wall-clock times of :func:`planner.plan` with the Khepera's padding, each with the
+planner's per-process caches (bitmaps, plans) cleared first. Most of such a plan is the visible checkpoints
+(:mod:`planner.visibility`): the cell path search, and the legs :func:`planner.visibility.taut` tests, which it asks
+in batches (:func:`planner.visibility.legs_clear`) and which are decided on a sixteenth of their sample points
+where the slack's Lipschitz bound allows. Wall-clock times depend on the machine and its load; docs/performance.md
+has today's.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import time
 
 from planner import plan
@@ -25,10 +26,9 @@ from robots.params import KHEPERA
 
 
 def fresh_plan(world):
-    """:func:`planner.plan` with every per-process cache cleared first (s, the plan)."""
-    from planner import bitmap, plan as plan_module
-
-    for module in (bitmap, plan_module):
+    """:func:`planner.plan` with every per-process cache cleared first (s, the plan). The module ``planner.plan`` is
+    looked up by name: ``from planner import plan`` is the function, whose own attributes hold no cache."""
+    for module in (importlib.import_module("planner.bitmap"), importlib.import_module("planner.plan")):
         for name in dir(module):
             cached = getattr(module, name)
             if hasattr(cached, "cache_clear"):
