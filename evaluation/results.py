@@ -202,7 +202,11 @@ def whose(what: str) -> str:
 
 
 #: The settings in the order a difference is reported: the first that differs is the one a user changed.
-ORDER = ("worlds", "labels", "trials", "seed", "architectures", "config", "map", "ekm_version")
+ORDER = ("worlds", "labels", "trials", "seed", "architectures", "engine", "config", "map", "ekm_version")
+
+
+#: Settings a file may not say, and what its silence means: files made before ``ekm compare --engine`` ran on pymunk.
+UNSAID = {"engine": "pymunk"}
 
 
 def _difference(old: dict, new: dict) -> str:
@@ -210,7 +214,7 @@ def _difference(old: dict, new: dict) -> str:
     ``"NAME: OLD in the file, NEW now"`` (for a list, the first item that differs; for the scenario config, the
     first field); "" if none does."""
     for name in ORDER + tuple(sorted(set(old) | set(new) - set(ORDER))):
-        a, b = old.get(name), new.get(name)
+        a, b = old.get(name, UNSAID.get(name)), new.get(name, UNSAID.get(name))
         if a == b:
             continue
         if isinstance(a, dict) and isinstance(b, dict):

@@ -1,0 +1,506 @@
+"""The scenario runner on the JAX engine: many runs of one architecture in one batch (docs/guide/jaxworld.md).
+
+:func:`evaluation.scenario.run_scenario` runs one robot in the pymunk world, a Python loop calling one jitted step a
+tick. Here one batch holds one architecture's runs over many (world, seed) pairs, and a tick of all of them is one
+``vmap`` inside one jitted ``lax.scan``. Each tick does for every run what the pymunk runner's ``episode`` does:
+
+1. pass the checkpoints already within reach or seen past (``pass_checkpoints``: within 5 mm, or near one whose
+   successor the robot sees; every ``look_every`` ticks the last of ``look_ahead`` later ones it sees);
+2. sense (the IR with its noise, :func:`robots.jaxworld.engine.sense`) and hand the controller its
+   :class:`~robots.controllers.base.Observation`; after a recovery the robot turns on the spot instead, for at most
+   ``turn_s``, until the route is ahead (the controller is not stepped on those ticks);
+3. stop at the goal: within 5 mm of it, a command that rounds to zero, or ``settle_s`` spent there, ends the run
+   after one period of a zero command;
+4. drive one period (:func:`robots.jaxworld.engine.step`); a sub-step within 5 mm of the checkpoint reaches it;
+5. the trap monitor (:mod:`evaluation.jaxmonitor`, :class:`~evaluation.monitor.TrapMonitor`'s rule): trapped, the
+   run ends — or, with recovery, **waits** for the host.
+
+The planner stays on the host (the imperative shell, :func:`run_batch`): plans are made before the batch; the scan
+runs in chunks of ``chunk_ticks``; between chunks the host takes every waiting run through the pymunk runner's
+recovery — what its IR saw joins the planner's map (:func:`evaluation.scenario.with_sensed`), a new plan from where
+it stands (:func:`evaluation.scenario.replan_from`) — writes the new checkpoints and map into the batch's arrays,
+and the batch goes on. A run that waits loses no simulated time, only the rest of its chunk of wall time.
+
+The records are :class:`~evaluation.scenario.RunRecord`'s, built from every live tick's outputs exactly as the
+pymunk runner builds them (poses at every sub-step, the commands, the plans, contact episodes), so outcomes, motion
+measures and results files are the same; ``checkpoint_log`` and ``trap_log`` (what ``ekm run --plot`` marks) are
+not kept. Noise: slip ξ ~ U(-1, 1) and IR ξ ~ N(0, 1) from the run's key, ``jax.random.key(seed)`` split every
+tick — the same distributions as the pymunk world's NumPy streams, not the same draws. Times are float32 (k dt).
+Worlds with movers, timed events or a moving goal are refused (:func:`robots.jaxworld.scene.refuse_unsimulated`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from functools import partial
+from typing import Any, NamedTuple
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from evaluation import jaxmonitor
+from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, replan_from, sensed_points,
+                                 split_step, time_limit_for, turn_on_the_spot, with_sensed)
+from robots import kinematics
+from robots.controllers.base import Observation
+from robots.jaxworld import engine
+from robots.jaxworld.scene import Scene, refuse_unsimulated, scene_of, sizes
+from robots.jaxworld.task import sees, sees_next, sight_need
+from robots.params import RobotParams, SensorSet
+
+#: A run's status: ticking, waiting for the host to replan (recovery), or ended — and how.
+RUNNING, WAITING, ARRIVED, TRAPPED, TIMEOUT = 0, 1, 2, 3, 4
+ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit"}
+
+#: Ticks of one chunk of the scan (4.1 s of 0.128 s ticks): how long a run that needs a new plan may wait for it.
+CHUNK_TICKS = 32
+
+
+@dataclass(frozen=True)
+class Setup:
+    """What every run of a batch shares (static under ``jit``): the robot and its IR ring, the period's sub-steps
+    ``n`` and slip draws ``k``, the scenario's rules (:class:`~evaluation.scenario.ScenarioConfig`), the trap
+    monitor's, and the controller's step as :func:`~evaluation.scenario.split_step` splits it (``func``,
+    ``static``)."""
+
+    params: RobotParams
+    sensors: SensorSet
+    n: int
+    k: int
+    config: ScenarioConfig
+    rule: jaxmonitor.MonitorRule
+    func: Any
+    static: tuple
+
+    @property
+    def visible(self) -> bool:
+        """Whether the plans' checkpoints see each other (the ``visible`` rule): only then are they passed early."""
+        return self.config.checkpoints == "visible"
+
+
+class Route(NamedTuple):
+    """One run's arrays that the host sets (a leading batch axis in a batch): ``scene`` every shape of its world,
+    ``sight`` the planner's map (known shapes and what recovery added), ``checkpoints`` ``(K, 2)`` (goal at
+    ``last``, padded by repeating it), ``ticks`` its time limit in ticks, ``may_recover`` whether a trap waits for a
+    new plan (else it ends the run)."""
+
+    scene: Scene
+    sight: Scene
+    checkpoints: Any
+    last: Any
+    ticks: Any
+    may_recover: Any
+
+
+class RunState(NamedTuple):
+    """One run's state between ticks: the engine's, the controller's (``control``), the PRNG ``key``, ``tick``s
+    taken, the checkpoint ``index`` headed for and the ``target_id`` the controller sees, whether it stood within the
+    goal's tolerance last tick (``settled``) and ``since`` when (s), until when it turns after a recovery
+    (``turn_until``, s), the trap monitor, ``status`` (:data:`RUNNING` …), checkpoints ``passed`` (the goal too) and
+    the time (s) of the tick it stopped at the goal (``stop_t``)."""
+
+    engine: engine.EngineState
+    control: Any
+    key: Any
+    tick: Any
+    index: Any
+    target_id: Any
+    settled: Any
+    since: Any
+    turn_until: Any
+    monitor: jaxmonitor.MonitorState
+    status: Any
+    passed: Any
+    stop_t: Any
+
+
+class TickOut(NamedTuple):
+    """What one tick leaves for the record: ``live`` (the run was ticking), the ``pose`` ``(3,)`` and ``ir``
+    ``(m,)`` it sensed, the ``command`` ``(2,)`` sent and whether it was the architecture's or recovery's
+    (``commanded``; not on the stop at the goal), the sub-step ``trace`` ``(n, 3)``, contact episodes so far."""
+
+    live: Any
+    pose: Any
+    ir: Any
+    command: Any
+    commanded: Any
+    trace: Any
+    collisions: Any
+
+
+def _where(flag, new, old):
+    return jax.tree.map(lambda a, b: jnp.where(flag, a, b), new, old)
+
+
+def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
+    """Step 1 (:func:`evaluation.scenario.pass_checkpoints`): ``(index, passed)`` after the checkpoints within
+    ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past; then, on every
+    ``look_every``-th tick, the last of the ``look_ahead`` later ones seen from ``pos``."""
+    config, radius, cps = setup.config, setup.params.radius, route.checkpoints
+
+    def passes(i):
+        within = jnp.linalg.norm(pos - cps[i]) < config.checkpoint_tolerance
+        if setup.visible:
+            within = within | sees_next(pos, cps, i, route.sight, radius, config.pass_radius)
+        return (i < route.last) & within
+
+    start = index
+    index = jax.lax.while_loop(passes, lambda i: i + 1, index)
+    if setup.visible:
+        need = sight_need(pos, route.sight, radius)
+        later = index
+        for j in range(config.look_ahead, 0, -1):  # the farthest seen wins: test from the nearest, keep the last
+            cand = jnp.minimum(index + (config.look_ahead + 1 - j), route.last)
+            later = jnp.where((cand > later) & sees(pos, cps[cand], route.sight, radius, need), cand, later)
+        index = jnp.where((tick % config.look_every == 0) & (index < route.last), later, index)
+    return index, index - start
+
+
+def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState, TickOut]:
+    """One 0.128 s tick of one run (the module docstring's steps); a run not :data:`RUNNING` stays as it is."""
+    p, config = setup.params, setup.config
+    key, k_ir, k_slip = jax.random.split(state.key, 3)
+    t = state.engine.k.astype(jnp.float32) * p.dt
+    pose = state.engine.robot.pose
+    pos = pose[:2]
+    index, passed = pass_checkpoints(setup, route, pos, state.index, state.tick)
+    monitor = jaxmonitor.reset(state.monitor, t, passed > 0)
+    target_id = state.target_id + passed
+    final = index == route.last
+    goal = route.checkpoints[index]
+
+    noise = jax.random.normal(k_ir, (len(setup.sensors.angles),))
+    ir = engine.sense(state.engine, route.scene, setup.sensors, noise, p)
+    target = kinematics.egocentric(pose, goal, xp=jnp)
+    obs = Observation(t=t, ir=ir.astype(jnp.float32), target=target.astype(jnp.float32), target_id=target_id,
+                      final=final, pose=pose, target_velocity=jnp.zeros(2, jnp.float32),
+                      markers=jnp.zeros((0, 5), jnp.float32))
+    turning = (t < state.turn_until) & (jnp.abs(target[0]) > config.turn_tolerance)
+    control, wanted = setup.func(state.control, obs, **arrays, **dict(setup.static))
+    control = _where(turning, state.control, control)
+    command = jnp.where(turning, turn_on_the_spot(target[0], p, jnp), jnp.asarray(wanted, jnp.float32))
+    turn_until = jnp.where(turning, state.turn_until, 0.0)
+
+    inside = final & (jnp.linalg.norm(pos - goal) < config.checkpoint_tolerance)
+    since = jnp.where(inside & state.settled, state.since, t)
+    stop = inside & (kinematics.is_stop_command(command, p, jnp) | (t - since >= config.settle_s - 1e-9))
+
+    slip = jax.random.uniform(k_slip, (setup.k, 2), minval=-1.0, maxval=1.0)
+    eng, trace = engine.step(state.engine, route.scene, jnp.where(stop, 0.0, command), slip, p, setup.n)
+    t_end = eng.k.astype(jnp.float32) * p.dt
+    near = ~stop & ~final & jnp.any(jnp.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance)
+    index = index + near
+    monitor = jaxmonitor.reset(monitor, t_end, near)
+    watched, trapped = jaxmonitor.update(monitor, t_end, jnp.linalg.norm(eng.robot.pose[:2] - route.checkpoints[index]),
+                                         eng.robot.pose[:2], setup.rule)
+    watch = ~stop & ~near
+    monitor = _where(watch, watched, monitor)
+    trapped = watch & trapped
+    status = jnp.where(stop, ARRIVED, jnp.where(trapped, jnp.where(route.may_recover, WAITING, TRAPPED), RUNNING))
+    ticks = state.tick + 1
+    status = jnp.where((status == RUNNING) & (ticks >= route.ticks), TIMEOUT, status).astype(jnp.int32)
+
+    new = RunState(engine=eng, control=control, key=key, tick=ticks, index=index, target_id=target_id + near,
+                   settled=inside, since=since, turn_until=turn_until, monitor=monitor, status=status,
+                   passed=state.passed + passed + near + stop, stop_t=jnp.where(stop, t, state.stop_t))
+    live = state.status == RUNNING
+    out = TickOut(live=live, pose=pose, ir=ir, command=command, commanded=~stop, trace=trace,
+                  collisions=eng.collisions)
+    return _where(live, new, state), out
+
+
+@partial(jax.jit, static_argnames=("setup", "length"), donate_argnums=(2,))
+def advance(setup: Setup, routes: Route, state: RunState, arrays, length: int = CHUNK_TICKS):
+    """``length`` ticks of every run of a batch (leading axis B on ``routes``, ``state`` and ``arrays``): the new
+    state and every tick's :class:`TickOut` ``(length, B, ...)``."""
+    one = jax.vmap(partial(tick, setup))
+
+    def body(s, _):
+        return one(routes, s, arrays)
+
+    return jax.lax.scan(body, state, None, length=length)
+
+
+def _bucket(n: int) -> int:
+    """The padded size that holds ``n``: the next power of two (few shapes, so few compilations)."""
+    return 1 << max(0, int(n) - 1).bit_length()
+
+
+def _sight_world(known):
+    """The planner's map as shapes the JAX engine can measure: the known world less its unforeseen obstacles."""
+    return replace(known, unforeseen=())
+
+
+def _stack(scenes: list) -> Scene:
+    return Scene(*(np.stack(leaves) for leaves in zip(*scenes)))
+
+
+def _scenes(worlds: list, fit: tuple | None = None) -> Scene:
+    """The scenes of ``worlds`` stacked, padded to one shape — at least ``fit`` — with room to grow (powers of
+    two), so that recovery's added discs rarely call for a new shape."""
+    need = np.max([sizes(w) for w in worlds] + ([fit] if fit else []), axis=0)
+    shape = (_bucket(need[0]), int(need[1]), int(need[2]))
+    return _stack([scene_of(w, shape) for w in worlds])
+
+
+def _padded(checkpoints: list, slots: int) -> np.ndarray:
+    return np.stack([np.concatenate([c, np.repeat(c[-1:], slots - len(c), axis=0)]) for c in checkpoints]) \
+        .astype(np.float32)
+
+
+@dataclass
+class Run:
+    """One run's host side: its world, seed and body (the controller: robot and sensors), the plan it follows and
+    the planner's map (``known``), recoveries so far, the record being written, and every tick's sensing on which
+    the IR saw something (``sensed``: (t, pose, readings, markers), as :func:`evaluation.scenario.sensed_points`
+    takes it)."""
+
+    world: Any
+    seed: int
+    body: Any
+    plan: Any
+    known: Any
+    rec: RunRecord
+    ticks: int
+    recoveries: int = 0
+    replans: int = 0
+    trapped_why: str = "trapped"
+    collisions: int = 0
+    sensed: list | None = None
+    poses: list | None = None
+    times: list | None = None
+
+
+def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
+    """A run's host side at t = 0: its first plan and time limit (raises :class:`~ekm.errors.InputError` for a world
+    the engine does not simulate, a start the robot does not fit or no route)."""
+    from planner.checkpoints import path_length
+
+    refuse_unsimulated(world)
+    robot = body.robot
+    current = first_plan(world, robot, config)
+    rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
+    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
+    limit = time_limit_for(config, path_length(np.asarray(world.start[:2]), current.checkpoints), robot.max_wheel_speed)
+    rec.time_limit_s = limit
+    return Run(world, seed, body, current, world, rec, math.ceil(limit / robot.avoid_period - 1e-9),
+               sensed=[], poses=[np.asarray(world.start, float)], times=[0.0])
+
+
+def _taken(run: Run, out: TickOut, setup: Setup) -> None:
+    """Append one live tick's outputs (NumPy, one run's) to the run's record."""
+    dt = setup.params.dt
+    t = run.times[-1]
+    pose = out.pose.astype(float)
+    if np.isfinite(out.ir).any():
+        run.sensed.append((t, pose, out.ir.astype(float), np.zeros((0, 5), np.float32)))
+    if out.commanded:
+        run.rec.commands.append((t, float(out.command[0]), float(out.command[1])))
+    run.poses.extend(out.trace.astype(float))
+    run.times.extend(t + dt * np.arange(1, len(out.trace) + 1))
+    if out.commanded and out.collisions > run.collisions:  # as the pymunk runner's drive logs them
+        end = out.trace[-1]
+        run.rec.collision_log.extend([(run.times[-1], float(end[0]), float(end[1]))] * int(out.collisions - run.collisions))
+        run.collisions = int(out.collisions)
+
+
+def finish_run(run: Run, status: int, state: RunState, control) -> RunRecord:
+    """The record of a run that ended with ``status`` in ``state`` (one run's, NumPy): the outcome measured on its
+    traces as :func:`evaluation.scenario.finish` measures it."""
+    rec = run.rec
+    rec.ended = run.trapped_why if status == TRAPPED else ENDED[status]
+    rec.arrived, rec.trapped = status == ARRIVED, status == TRAPPED
+    rec.replans, rec.recoveries = run.replans, run.recoveries
+    rec.poses, rec.times = np.asarray(run.poses), np.asarray(run.times)
+    rec.time_s = float(state.stop_t) if rec.arrived else float(rec.times[-1])
+    rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
+    rec.collisions, rec.contact_s = int(state.engine.collisions), float(state.engine.contact_s)
+    rec.checkpoints_reached = int(state.passed)
+    rec.final_distance_m = float(np.linalg.norm(rec.poses[-1, :2] - np.asarray(run.world.goal_at(rec.times[-1]))))
+    rec.reached = rec.arrived and rec.collisions == 0
+    rec.final_state = control
+    return rec
+
+
+def recover(run: Run, pose, t: float, config: ScenarioConfig):
+    """The pymunk runner's recovery (:func:`evaluation.scenario.watch`) for a run whose monitor fired at ``t`` with
+    the robot at ``pose``: its checkpoints after the new plan, or None (it ends trapped: no recovery left, or no
+    route round what it sensed)."""
+    if not config.recover or run.recoveries >= config.max_recoveries:
+        return None
+    run.recoveries += 1
+    body = run.body
+    known, added = with_sensed(run.known, *sensed_points(run.sensed, body), config.sensed_radius,
+                               body.sensors.noise, body.sensors.resolution_m)
+    current = replan_from(run.plan, known, np.asarray(pose[:2], float), t, body.robot, config)
+    if current is None:
+        run.trapped_why = "trapped (no route around the sensed obstacle)"
+        return None
+    run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added))
+    run.plan, run.known, run.replans = current, known, run.replans + 1
+    return current.checkpoints
+
+
+def setup_for(body, func, static, config: ScenarioConfig) -> Setup:
+    """The :class:`Setup` of a batch driven by ``body`` (a controller: robot and sensors) with the step
+    ``func``/``static``."""
+    robot = body.robot
+    n = robot.substeps(robot.avoid_period)
+    rule = jaxmonitor.MonitorRule(config.trap_after, config.trap_progress, config.trap_ground, config.trap_loop)
+    return Setup(params=robot, sensors=body.sensors, n=n, k=robot.noise_shape(robot.avoid_period)[0], config=config,
+                 rule=rule, func=func, static=static)
+
+
+def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int = CHUNK_TICKS,
+              between=lambda: None) -> None:
+    """Drive ``runs`` (started by :func:`start_run`) to their ends in one batch: ``controls[i]`` the controller's
+    fresh state and ``arrays[i]`` its step's array keywords (:func:`~evaluation.scenario.split_step`) for run ``i``.
+    ``on_done(i, record)`` receives each run's :class:`RunRecord` as it ends (at the end of the chunk it ended in);
+    ``between()`` is called between chunks (Ctrl-C). The imperative shell of the module docstring."""
+    config = setup.config
+    b = len(runs)
+    may = config.recover and config.max_recoveries > 0
+    extent = np.max([r.world.size for r in runs], axis=0)
+    grid = jaxmonitor.grid_size(extent, config.trap_ground)
+    cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
+    routes = Route(scene=_scenes([r.world for r in runs]), sight=_scenes([_sight_world(r.known) for r in runs]),
+                   checkpoints=_padded(cps, _bucket(max(len(c) for c in cps))),
+                   last=np.array([len(c) - 1 for c in cps], np.int32),
+                   ticks=np.array([r.ticks for r in runs], np.int32), may_recover=np.full(b, may))
+    starts = jnp.asarray(np.stack([r.world.start for r in runs]), jnp.float32)
+    eng = jax.vmap(partial(engine.reset, params=setup.params))(starts, jax.tree.map(jnp.asarray, routes.scene))
+    stack = partial(jax.tree.map, lambda *a: jnp.stack(a))
+    zeros = partial(jnp.zeros, b)
+    state = RunState(engine=eng, control=stack(*controls), key=jax.vmap(jax.random.PRNGKey)(jnp.array([r.seed for r in runs])),
+                     tick=zeros(jnp.int32), index=zeros(jnp.int32), target_id=zeros(jnp.int32), settled=zeros(bool),
+                     since=zeros(jnp.float32), turn_until=zeros(jnp.float32),
+                     monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (b,) + a.shape), jaxmonitor.init(grid)),
+                     status=zeros(jnp.int32), passed=zeros(jnp.int32), stop_t=zeros(jnp.float32))
+    arrays = stack(*arrays)
+    open_ = np.ones(b, bool)
+    while open_.any():
+        state, outs = advance(setup, routes, state, arrays, chunk_ticks)
+        outs = jax.tree.map(np.asarray, outs)
+        status = np.asarray(state.status)
+        for i in np.flatnonzero(open_):
+            for j in np.flatnonzero(outs.live[:, i]):
+                _taken(runs[i], jax.tree.map(lambda a: a[j, i], outs), setup)
+        waiting = np.flatnonzero(open_ & (status == WAITING))
+        if len(waiting):
+            routes, state = _recoveries(runs, waiting, routes, state, setup)
+            status = np.asarray(state.status)
+        for i in np.flatnonzero(open_ & (status >= ARRIVED)):
+            one = jax.tree.map(lambda a: np.asarray(a[i]), state)
+            on_done(int(i), finish_run(runs[i], int(status[i]), one, one.control))
+            open_[i] = False
+        between()
+
+
+def _recoveries(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
+    """Recovery for every run in ``waiting``: new plans and maps into ``routes``, the runs' states restarted on them
+    (index 0, a new target, the monitor reset, a turn to face the route) — or ended trapped."""
+    config = setup.config
+    poses = np.asarray(state.engine.robot.pose)
+    ks = np.asarray(state.engine.k)
+    new = {}
+    for i in waiting:
+        t = float(np.float32(ks[i]) * np.float32(setup.params.dt))
+        new[int(i)] = (t, recover(runs[i], poses[i], t, config))
+    cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
+    slots = max(routes.checkpoints.shape[1], _bucket(max(len(c) for c in cps)))
+    routes = routes._replace(sight=_grown(routes.sight, runs, [i for i, (_, c) in new.items() if c is not None]),
+                             checkpoints=_padded(cps, slots), last=np.array([len(c) - 1 for c in cps], np.int32))
+    status = np.asarray(state.status).copy()
+    index, target_id, turn_until = (np.asarray(a).copy() for a in (state.index, state.target_id, state.turn_until))
+    ticks = np.asarray(state.tick)
+    rows = []
+    for i, (t, checkpoints) in new.items():
+        if checkpoints is None:
+            status[i] = TRAPPED
+            continue
+        rows.append((i, t))
+        index[i], target_id[i], turn_until[i] = 0, target_id[i] + 1, t + config.turn_s
+        status[i] = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
+    monitor = state.monitor
+    for i, t in rows:
+        one = jax.tree.map(lambda a: a[i], monitor)
+        monitor = jax.tree.map(lambda a, v: a.at[i].set(v), monitor, jaxmonitor.reset(one, jnp.float32(t)))
+    may = routes.may_recover.copy()
+    for r_i, r in enumerate(runs):
+        may[r_i] = config.recover and r.recoveries < config.max_recoveries
+    routes = routes._replace(may_recover=may)
+    state = state._replace(status=jnp.asarray(status), index=jnp.asarray(index), target_id=jnp.asarray(target_id),
+                           turn_until=jnp.asarray(turn_until, jnp.float32), monitor=monitor)
+    return routes, state
+
+
+def _grown(sight: Scene, runs: list, changed: list) -> Scene:
+    """The batch's ``sight`` with the maps of the ``changed`` runs made again; every run's again, to a larger
+    shape, when one of them no longer fits."""
+    shape = (sight.cap_a.shape[1], sight.poly_v.shape[1], sight.poly_v.shape[2])
+    try:
+        rows = {i: scene_of(_sight_world(runs[i].known), shape) for i in changed}
+    except ValueError:  # recovery's discs outgrew the padding
+        return _scenes([_sight_world(r.known) for r in runs])
+    leaves = [np.array(a) for a in sight]
+    for i, scene in rows.items():
+        for leaf, row in zip(leaves, scene):
+            leaf[i] = row
+    return Scene(*leaves)
+
+
+def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ticks: int = CHUNK_TICKS) -> list[dict]:
+    """The records of a comparison's jobs (:class:`evaluation.compare.Job`) on the JAX engine, in the jobs' order
+    (:func:`evaluation.batch.kept`'s ``run``): one batch per architecture (and map, robot, learning rule, config)
+    over all its worlds and seeds. ``done``: ``{index: record}`` already made, not run again; ``on_done(index,
+    record)`` as each run ends. A job that cannot start — its world has movers, events or a moving goal, no route,
+    a start the robot does not fit — is a failed record (:func:`evaluation.compare.failed_record`), as on pymunk."""
+    from ekm import interrupts
+    from evaluation.compare import _world, failed_record, failure, job_driver, job_record, world_family
+    from evaluation.scenario import driven
+
+    records: list = [None] * len(job_list)
+    for i, record in (done or {}).items():
+        records[i] = record
+
+    def finish(i: int, record: dict) -> None:
+        records[i] = record
+        if on_done:
+            on_done(i, record)
+
+    groups: dict = {}
+    for i, job in enumerate(job_list):
+        if records[i] is None:
+            groups.setdefault((job.architecture, job.map_path, job.robot, job.learn, job.config, job.added), []).append(i)
+    for members in groups.values():
+        runs, drivers, batch = [], [], []
+        for i in members:
+            job, world = job_list[i], None
+            try:
+                d = job_driver(job)
+                world = _world(job.world)
+                runs.append(start_run(world, d.controller, job.seed, job.config, d.controller.spec))
+            except Exception as exc:
+                finish(i, failed_record(job, failure(job, exc), world.name if world is not None else None,
+                                        world_family(world) if world is not None else None))
+                continue
+            drivers.append(d)
+            batch.append(i)
+        if not batch:
+            continue
+        parts = [split_step(d.controller.step) for d in drivers]
+        if parts[0] is None or any(p is None or p[0] is not parts[0][0] or p[2] != parts[0][2] for p in parts):
+            for i in batch:
+                finish(i, failed_record(job_list[i], f"{job_list[i].world}: engine jax: the architecture's step is not "
+                                        f"one jitted function with its maps as keywords; use the pymunk engine"))
+            continue
+        setup = setup_for(drivers[0].controller, parts[0][0], parts[0][2], job_list[batch[0]].config)
+
+        def ended(k: int, rec: RunRecord) -> None:
+            finish(batch[k], job_record(job_list[batch[k]], driven(rec, drivers[k])))
+
+        run_batch(runs, [d.controller.init() for d in drivers], [p[1] for p in parts], setup, ended, chunk_ticks,
+                  between=interrupts.check)
+    return records
