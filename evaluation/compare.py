@@ -154,11 +154,11 @@ def world_family(world) -> str | None:
 
 
 def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path: str | None = None,
-         keep_paths: bool = False, robot=None, learn: str | None = None) -> list[Job]:
+         keep_paths: bool = False, robot=None, learn: str | None = None, engine: str = "pymunk") -> list[Job]:
     """Every (architecture, world, trial) of a comparison, in a fixed order — world by world, so that a worker
     plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``.
     ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera); ``learn``: the spelling
-    of the learning rule of the maps that drive (None: frozen)."""
+    of the learning rule of the maps that drive (None: frozen); ``engine`` the world's ("pymunk" or "jax")."""
     from robots.registry import added_here
 
     added = added_here()
@@ -169,7 +169,7 @@ def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path
         document = robot_json(robot)
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
                 map_path=map_path, keep_path=keep_paths and i == 0, added=added, robot=document,
-                learn=learn if spec.uses_map else None)
+                learn=learn if spec.uses_map else None, engine=engine)
             for w in worlds for i in range(trials) for spec in specs]
 
 
