@@ -148,12 +148,11 @@ def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
 
     start = index
     index = jax.lax.while_loop(passes, lambda i: i + 1, index)
-    if setup.visible:
+    if setup.visible and config.look_ahead:
         need = sight_need(pos, route.sight, radius)
-        later = index
-        for j in range(config.look_ahead, 0, -1):  # the farthest seen wins: test from the nearest, keep the last
-            cand = jnp.minimum(index + (config.look_ahead + 1 - j), route.last)
-            later = jnp.where((cand > later) & sees(pos, cps[cand], route.sight, radius, need), cand, later)
+        ahead = jnp.minimum(index + jnp.arange(1, config.look_ahead + 1), route.last)
+        seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[ahead])
+        later = jnp.max(jnp.where(seen, ahead, index))  # the farthest seen
         index = jnp.where((tick % config.look_every == 0) & (index < route.last), later, index)
     return index, index - start
 
@@ -237,11 +236,20 @@ def _stack(scenes: list) -> Scene:
     return Scene(*(np.stack(leaves) for leaves in zip(*scenes)))
 
 
-def _scenes(worlds: list, fit: tuple | None = None) -> Scene:
-    """The scenes of ``worlds`` stacked, padded to one shape — at least ``fit`` — with room to grow (powers of
-    two), so that recovery's added discs rarely call for a new shape."""
-    need = np.max([sizes(w) for w in worlds] + ([fit] if fit else []), axis=0)
-    shape = (_bucket(need[0]), int(need[1]), int(need[2]))
+#: Capsules a batch's planner maps keep free for the discs recovery adds (a trap typically adds tens): a map that
+#: outgrows its padding makes the batch compile again.
+ROOM = 128
+
+
+#: Checkpoint slots kept free for a new plan longer than the first (recovery): likewise.
+SLOTS = 8
+
+
+def _scenes(worlds: list, room: int = 0) -> Scene:
+    """The scenes of ``worlds`` stacked, padded to one shape with ``room`` capsules to spare, their number rounded up
+    to a power of two (few shapes, few compilations)."""
+    need = np.max([sizes(w) for w in worlds], axis=0)
+    shape = (_bucket(need[0] + room), int(need[1]), int(need[2]))
     return _stack([scene_of(w, shape) for w in worlds])
 
 
@@ -365,8 +373,9 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
     extent = np.max([r.world.size for r in runs], axis=0)
     grid = jaxmonitor.grid_size(extent, config.trap_ground)
     cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
-    routes = Route(scene=_scenes([r.world for r in runs]), sight=_scenes([_sight_world(r.known) for r in runs]),
-                   checkpoints=_padded(cps, _bucket(max(len(c) for c in cps))),
+    room = ROOM if may else 0
+    routes = Route(scene=_scenes([r.world for r in runs]), sight=_scenes([_sight_world(r.known) for r in runs], room),
+                   checkpoints=_padded(cps, _bucket(max(len(c) for c in cps) + (SLOTS if may else 0))),
                    last=np.array([len(c) - 1 for c in cps], np.int32),
                    ticks=np.array([r.ticks for r in runs], np.int32), may_recover=np.full(b, may))
     starts = jnp.asarray(np.stack([r.world.start for r in runs]), jnp.float32)
@@ -443,7 +452,7 @@ def _grown(sight: Scene, runs: list, changed: list) -> Scene:
     try:
         rows = {i: scene_of(_sight_world(runs[i].known), shape) for i in changed}
     except ValueError:  # recovery's discs outgrew the padding
-        return _scenes([_sight_world(r.known) for r in runs])
+        return _scenes([_sight_world(r.known) for r in runs], ROOM)
     leaves = [np.array(a) for a in sight]
     for i, scene in rows.items():
         for leaf, row in zip(leaves, scene):
@@ -503,4 +512,23 @@ def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ti
 
         run_batch(runs, [d.controller.init() for d in drivers], [p[1] for p in parts], setup, ended, chunk_ticks,
                   between=interrupts.check)
+    return records
+
+
+def run_scenarios(runs, controller, config: ScenarioConfig = ScenarioConfig(),
+                  chunk_ticks: int = CHUNK_TICKS) -> list[RunRecord]:
+    """:func:`evaluation.scenario.run_scenario` for many runs of one ``controller`` at once: ``runs`` a list of
+    ``(world, seed)``; their :class:`RunRecord` in that order (raises what :func:`start_run` raises for a run that
+    cannot start). The controller's step must be one jitted function with keywords
+    (:func:`~evaluation.scenario.split_step`), as every shipped architecture's is."""
+    from ekm.errors import InputError
+
+    parts = split_step(controller.step)
+    if parts is None:
+        raise InputError(f"engine jax: the step of {controller.name} is not a partial of one function with keywords")
+    func, arrays, static = parts
+    started = [start_run(world, controller, seed, config, controller.spec) for world, seed in runs]
+    records: list = [None] * len(started)
+    run_batch(started, [controller.init()] * len(started), [arrays] * len(started),
+              setup_for(controller, func, static, config), records.__setitem__, chunk_ticks)
     return records

@@ -3,12 +3,12 @@
 The first line is the header, the comparison's settings::
 
     {"ekm_results": 1, "settings": {"worlds": [...], "architectures": [...], "labels": [...], "trials": 10,
-     "seed": 0, "config": {...}, "map": null, "ekm_version": "0.1.0"}}
+     "seed": 0, "config": {...}, "map": null, "engine": "pymunk", "ekm_version": "0.1.0"}}
 
-then one line per finished run, in the order the runs finished::
+(``engine``: the world the runs drove in, ``pymunk`` or ``jax``; a file that does not say is pymunk's), then one line per finished run, in the order the runs finished::
 
     {"job": {"world": "maze:1003", "architecture": "fields:...", "label": "fields", "trial": 4, "seed": 4,
-             "map": null, "ekm_version": "0.1.0"},
+             "map": null, "engine": "pymunk", "ekm_version": "0.1.0"},
      "outcome": {... the run's record, as evaluation.compare.run_job returns it ...}}
 
 Each line is written whole and flushed as its run arrives, so a crash loses at most the runs in flight;
