@@ -54,6 +54,9 @@ from robots.params import RobotParams, SensorSet
 RUNNING, WAITING, ARRIVED, TRAPPED, TIMEOUT = 0, 1, 2, 3, 4
 ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit"}
 
+#: Runs stepped together as one ``vmap`` (the blocks of :func:`advance`).
+BLOCK = 32
+
 #: Ticks of one chunk of the scan (4.1 s of 0.128 s ticks): how long a run that needs a new plan may wait for it.
 CHUNK_TICKS = 32
 
@@ -210,16 +213,32 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
     return _where(live, new, state), out
 
 
-@partial(jax.jit, static_argnames=("setup", "length"), donate_argnums=(2,))
-def advance(setup: Setup, routes: Route, state: RunState, arrays, length: int = CHUNK_TICKS):
-    """``length`` ticks of every run of a batch (leading axis B on ``routes``, ``state`` and ``arrays``): the new
-    state and every tick's :class:`TickOut` ``(length, B, ...)``."""
+@partial(jax.jit, static_argnames=("setup", "block", "length"), donate_argnums=(3,))
+def advance(setup: Setup, block: int, routes: Route, state: RunState, arrays, length: int = CHUNK_TICKS):
+    """``length`` ticks of every run of a batch (leading axis B, a multiple of ``block``, on ``routes``, ``state``
+    and ``arrays``): the new state and every tick's :class:`TickOut` ``(B, length, ...)``.
+
+    The runs go through in blocks of ``block`` — ``lax.map`` over blocks, each block's ticks one ``lax.scan`` of a
+    ``vmap`` — for two reasons: a block's arrays stay in cache, where one ``vmap`` of hundreds of runs is several
+    times slower on a CPU (docs/performance.md, the world in JAX); and a block none of whose runs is
+    :data:`RUNNING` is skipped (``lax.cond``), so the host, which puts the open runs first, pays only for the
+    blocks that hold them while a batch's last runs finish."""
     one = jax.vmap(partial(tick, setup))
 
-    def body(s, _):
-        return one(routes, s, arrays)
+    def go(x):
+        route, s, arr = x
+        s, outs = jax.lax.scan(lambda c, _: one(route, c, arr), s, None, length=length)
+        return s, jax.tree.map(lambda a: jnp.swapaxes(a, 0, 1), outs)
 
-    return jax.lax.scan(body, state, None, length=length)
+    def run(x):
+        shapes = jax.eval_shape(go, x)[1]
+        return jax.lax.cond(jnp.any(x[1].status == RUNNING), go,
+                            lambda y: (y[1], jax.tree.map(lambda d: jnp.zeros(d.shape, d.dtype), shapes)), x)
+
+    b = state.tick.shape[0]
+    blocks = jax.tree.map(lambda a: a.reshape((b // block, block) + a.shape[1:]), (routes, state, arrays))
+    state, outs = jax.lax.map(run, blocks)
+    return jax.tree.map(lambda a: a.reshape((b,) + a.shape[2:]), (state, outs))
 
 
 def _bucket(n: int) -> int:
@@ -297,21 +316,30 @@ def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
                sensed=[], poses=[np.asarray(world.start, float)], times=[0.0])
 
 
-def _taken(run: Run, out: TickOut, setup: Setup) -> None:
-    """Append one live tick's outputs (NumPy, one run's) to the run's record."""
-    dt = setup.params.dt
-    t = run.times[-1]
-    pose = out.pose.astype(float)
-    if np.isfinite(out.ir).any():
-        run.sensed.append((t, pose, out.ir.astype(float), np.zeros((0, 5), np.float32)))
-    if out.commanded:
-        run.rec.commands.append((t, float(out.command[0]), float(out.command[1])))
-    run.poses.extend(out.trace.astype(float))
-    run.times.extend(t + dt * np.arange(1, len(out.trace) + 1))
-    if out.commanded and out.collisions > run.collisions:  # as the pymunk runner's drive logs them
-        end = out.trace[-1]
-        run.rec.collision_log.extend([(run.times[-1], float(end[0]), float(end[1]))] * int(out.collisions - run.collisions))
-        run.collisions = int(out.collisions)
+def _taken(run: Run, outs: TickOut, i: int, setup: Setup) -> None:
+    """Append run ``i``'s live ticks of one chunk's outputs ``outs`` (NumPy, ``(B, ticks, ...)``) to its record —
+    a prefix of the chunk: a run leaves :data:`RUNNING` at most once in a chunk."""
+    live = np.flatnonzero(outs.live[i])
+    if not len(live):
+        return
+    dt, n = setup.params.dt, setup.n
+    t0 = run.times[-1]
+    starts = t0 + n * dt * np.arange(len(live))  # each tick's time
+    poses, irs, commands = outs.pose[i, live].astype(float), outs.ir[i, live].astype(float), outs.command[i, live]
+    commanded, collisions = outs.commanded[i, live], outs.collisions[i, live]
+    for j in np.flatnonzero(np.isfinite(irs).any(axis=1)):
+        run.sensed.append((starts[j], poses[j], irs[j], np.zeros((0, 5), np.float32)))
+    run.rec.commands.extend((starts[j], float(commands[j, 0]), float(commands[j, 1]))
+                            for j in np.flatnonzero(commanded))
+    trace = outs.trace[i, live].astype(float)
+    run.poses.extend(trace.reshape(-1, 3))
+    run.times.extend(t0 + dt * np.arange(1, len(live) * n + 1))
+    for j in np.flatnonzero(commanded & (collisions > np.concatenate([[run.collisions], collisions[:-1]]))):
+        new = int(collisions[j]) - (run.collisions if j == 0 else int(collisions[j - 1]))
+        end = starts[j] + n * dt
+        run.rec.collision_log.extend([(end, float(trace[j, -1, 0]), float(trace[j, -1, 1]))] * new)
+    if commanded[-1]:  # as the pymunk runner's drive logs them: not on the stop at the goal
+        run.collisions = int(collisions[-1])
 
 
 def finish_run(run: Run, status: int, state: RunState, control) -> RunRecord:
@@ -369,41 +397,51 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
     ``between()`` is called between chunks (Ctrl-C). The imperative shell of the module docstring."""
     config = setup.config
     b = len(runs)
+    blk = min(BLOCK, b)
+    slots = runs + [runs[0]] * (-b % blk)  # padding to whole blocks: copies of run 0 that never run
+    controls, arrays = controls + [controls[0]] * (len(slots) - b), arrays + [arrays[0]] * (len(slots) - b)
+    ids = np.where(np.arange(len(slots)) < b, np.arange(len(slots)), -1)
     may = config.recover and config.max_recoveries > 0
     extent = np.max([r.world.size for r in runs], axis=0)
     grid = jaxmonitor.grid_size(extent, config.trap_ground)
-    cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
+    cps = [np.asarray(r.plan.checkpoints, np.float32) for r in slots]
     room = ROOM if may else 0
-    routes = Route(scene=_scenes([r.world for r in runs]), sight=_scenes([_sight_world(r.known) for r in runs], room),
+    routes = Route(scene=_scenes([r.world for r in slots]), sight=_scenes([_sight_world(r.known) for r in slots], room),
                    checkpoints=_padded(cps, _bucket(max(len(c) for c in cps) + (SLOTS if may else 0))),
                    last=np.array([len(c) - 1 for c in cps], np.int32),
-                   ticks=np.array([r.ticks for r in runs], np.int32), may_recover=np.full(b, may))
-    starts = jnp.asarray(np.stack([r.world.start for r in runs]), jnp.float32)
+                   ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may))
+    starts = jnp.asarray(np.stack([r.world.start for r in slots]), jnp.float32)
     eng = jax.vmap(partial(engine.reset, params=setup.params))(starts, jax.tree.map(jnp.asarray, routes.scene))
     stack = partial(jax.tree.map, lambda *a: jnp.stack(a))
-    zeros = partial(jnp.zeros, b)
-    state = RunState(engine=eng, control=stack(*controls), key=jax.vmap(jax.random.PRNGKey)(jnp.array([r.seed for r in runs])),
-                     tick=zeros(jnp.int32), index=zeros(jnp.int32), target_id=zeros(jnp.int32), settled=zeros(bool),
+    zeros = partial(jnp.zeros, len(slots))
+    state = RunState(engine=eng, control=stack(*controls),
+                     key=jax.vmap(jax.random.PRNGKey)(jnp.array([r.seed for r in slots])), tick=zeros(jnp.int32),
+                     index=zeros(jnp.int32), target_id=zeros(jnp.int32), settled=zeros(bool),
                      since=zeros(jnp.float32), turn_until=zeros(jnp.float32),
-                     monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (b,) + a.shape), jaxmonitor.init(grid)),
-                     status=zeros(jnp.int32), passed=zeros(jnp.int32), stop_t=zeros(jnp.float32))
+                     monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (len(slots),) + a.shape), jaxmonitor.init(grid)),
+                     status=jnp.asarray(np.where(ids >= 0, RUNNING, TIMEOUT), jnp.int32), passed=zeros(jnp.int32),
+                     stop_t=zeros(jnp.float32))
     arrays = stack(*arrays)
-    open_ = np.ones(b, bool)
+    open_ = ids >= 0
     while open_.any():
-        state, outs = advance(setup, routes, state, arrays, chunk_ticks)
+        state, outs = advance(setup, blk, routes, state, arrays, chunk_ticks)
         outs = jax.tree.map(np.asarray, outs)
         status = np.asarray(state.status)
-        for i in np.flatnonzero(open_):
-            for j in np.flatnonzero(outs.live[:, i]):
-                _taken(runs[i], jax.tree.map(lambda a: a[j, i], outs), setup)
+        for k in np.flatnonzero(open_):
+            _taken(slots[k], outs, k, setup)
         waiting = np.flatnonzero(open_ & (status == WAITING))
         if len(waiting):
-            routes, state = _recoveries(runs, waiting, routes, state, setup)
+            routes, state = _recoveries(slots, waiting, routes, state, setup)
             status = np.asarray(state.status)
-        for i in np.flatnonzero(open_ & (status >= ARRIVED)):
-            one = jax.tree.map(lambda a: np.asarray(a[i]), state)
-            on_done(int(i), finish_run(runs[i], int(status[i]), one, one.control))
-            open_[i] = False
+        ended = np.flatnonzero(open_ & (status >= ARRIVED))
+        for k in ended:
+            one = jax.tree.map(lambda a: np.asarray(a[k]), state)
+            on_done(int(ids[k]), finish_run(slots[k], int(status[k]), one, one.control))
+            open_[k] = False
+        if len(ended):  # the open runs first, so that whole blocks of ended ones are skipped
+            order = np.argsort(~open_, kind="stable")
+            routes, state, arrays = jax.tree.map(lambda a: a[order], (routes, state, arrays))
+            slots, ids, open_ = [slots[k] for k in order], ids[order], open_[order]
         between()
 
 

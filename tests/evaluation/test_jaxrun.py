@@ -16,6 +16,8 @@ from robots.params import KHEPERA
 from robots.worldfile import parse_world
 from robots.worldnames import load_world
 
+pytestmark = pytest.mark.slow  # every test here compiles a batch: 20-45 s on a loaded 2-core machine
+
 
 @jax.jit
 def _go(state, obs, *, gain):
@@ -37,11 +39,19 @@ DEAD_END = parse_world({"name": "dead-end", "size": [1.0, 0.5], "start": [0.3, 0
                         "unforeseen": [{"type": "box", "center": [0.61, 0.25], "size": [0.02, 0.3]}]}, "dead-end.json")
 
 
+RUNS = [(load_world("open-arena"), 0), (load_world("open-arena"), 1), (DEAD_END, 0)]
+
+
 @pytest.fixture(scope="module")
 def batch():
-    """One batch, one compilation: open-arena seeds 0 and 1, and the dead end (seed 0)."""
-    arena = load_world("open-arena")
-    return jaxrun.run_scenarios([(arena, 0), (arena, 1), (DEAD_END, 0)], GO, ScenarioConfig(time_limit=60.0))
+    """One batch, one compilation: open-arena seeds 0 and 1, and the dead end (seed 0) — in blocks of 2, so that the
+    batch is padded to whole blocks and its open runs are moved to the front as others end."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr(jaxrun, "BLOCK", 2)
+    try:
+        return jaxrun.run_scenarios(RUNS, GO, ScenarioConfig(time_limit=60.0))
+    finally:
+        mp.undo()
 
 
 def test_a_scripted_controller_reaches_the_goal_of_open_arena_in_the_time_hand_arithmetic_gives(batch):
@@ -80,8 +90,13 @@ def test_a_dead_end_traps_the_robot_at_the_time_the_monitor_s_rule_gives_and_rec
     assert abs(x_at_trap - 0.575) < 0.002
 
 
-@pytest.mark.slow  # a second compilation (recovery off is part of the compiled program): ~20 s
 def test_without_recovery_the_dead_end_ends_the_run_trapped():
     rec, = jaxrun.run_scenarios([(DEAD_END, 0)], GO, ScenarioConfig(time_limit=60.0, recover=False))
     assert rec.trapped and rec.ended == "trapped" and not rec.reached and rec.replans == 0
     assert 21.56 <= rec.time_s <= 22.04  # the tick the monitor fired ends the run
+
+
+def test_a_run_is_the_same_whatever_batch_it_is_in(batch):
+    alone = jaxrun.run_scenarios([RUNS[1]], GO, ScenarioConfig(time_limit=60.0))[0]
+    assert (alone.time_s, alone.path_m, alone.collisions) == (batch[1].time_s, batch[1].path_m, batch[1].collisions)
+    assert np.array_equal(alone.poses, batch[1].poses)
