@@ -58,7 +58,7 @@ def init(grid: tuple[int, int]) -> MonitorState:
 
 def reset(m: MonitorState, t, when=True) -> MonitorState:
     """Where ``when``: a new checkpoint or plan at ``t`` s — distance and loop measured afresh, visited ground kept
-    (``TrapMonitor.reset``)."""
+    (``TrapMonitor.reset``). Elementwise: ``t`` and ``when`` may be ``(B,)`` for a batch's monitors."""
     return m._replace(best=jnp.where(when, jnp.inf, m.best).astype(jnp.float32),
                       since=jnp.where(when, t, m.since).astype(jnp.float32),
                       looped=jnp.where(when, 0.0, m.looped).astype(jnp.float32))

@@ -434,8 +434,10 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
             routes, state = _recoveries(slots, waiting, routes, state, setup)
             status = np.asarray(state.status)
         ended = np.flatnonzero(open_ & (status >= ARRIVED))
+        if len(ended):
+            host = jax.tree.map(np.array, state)  # a copy: the next chunk reuses the state's buffers
         for k in ended:
-            one = jax.tree.map(lambda a: np.asarray(a[k]), state)
+            one = jax.tree.map(lambda a: a[k], host)
             on_done(int(ids[k]), finish_run(slots[k], int(status[k]), one, one.control))
             open_[k] = False
         if len(ended):  # the open runs first, so that whole blocks of ended ones are skipped
@@ -470,10 +472,10 @@ def _recoveries(runs: list, waiting, routes: Route, state: RunState, setup: Setu
         rows.append((i, t))
         index[i], target_id[i], turn_until[i] = 0, target_id[i] + 1, t + config.turn_s
         status[i] = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
-    monitor = state.monitor
+    when, at = np.zeros(len(runs), bool), np.zeros(len(runs), np.float32)
     for i, t in rows:
-        one = jax.tree.map(lambda a: a[i], monitor)
-        monitor = jax.tree.map(lambda a, v: a.at[i].set(v), monitor, jaxmonitor.reset(one, jnp.float32(t)))
+        when[i], at[i] = True, t
+    monitor = jaxmonitor.reset(state.monitor, jnp.asarray(at), jnp.asarray(when))
     may = routes.may_recover.copy()
     for r_i, r in enumerate(runs):
         may[r_i] = config.recover and r.recoveries < config.max_recoveries

@@ -16,8 +16,6 @@ from robots.params import KHEPERA
 from robots.worldfile import parse_world
 from robots.worldnames import load_world
 
-pytestmark = pytest.mark.slow  # every test here compiles a batch: 20-45 s on a loaded 2-core machine
-
 
 @jax.jit
 def _go(state, obs, *, gain):
@@ -90,12 +88,14 @@ def test_a_dead_end_traps_the_robot_at_the_time_the_monitor_s_rule_gives_and_rec
     assert abs(x_at_trap - 0.575) < 0.002
 
 
+@pytest.mark.slow  # another compilation (recovery off is part of the program): 5-20 s
 def test_without_recovery_the_dead_end_ends_the_run_trapped():
     rec, = jaxrun.run_scenarios([(DEAD_END, 0)], GO, ScenarioConfig(time_limit=60.0, recover=False))
     assert rec.trapped and rec.ended == "trapped" and not rec.reached and rec.replans == 0
     assert 21.56 <= rec.time_s <= 22.04  # the tick the monitor fired ends the run
 
 
+@pytest.mark.slow  # another compilation (a batch of one): 5-20 s
 def test_a_run_is_the_same_whatever_batch_it_is_in(batch):
     alone = jaxrun.run_scenarios([RUNS[1]], GO, ScenarioConfig(time_limit=60.0))[0]
     assert (alone.time_s, alone.path_m, alone.collisions) == (batch[1].time_s, batch[1].path_m, batch[1].collisions)
