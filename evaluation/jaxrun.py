@@ -15,8 +15,9 @@ tick. Here one batch holds one architecture's runs over many (world, seed) pairs
 5. the trap monitor (:mod:`evaluation.jaxmonitor`, :class:`~evaluation.monitor.TrapMonitor`'s rule): trapped, the
    run ends — or, with recovery, **waits** for the host.
 
-The planner stays on the host (the imperative shell, :func:`run_batch`): plans are made before the batch; the scan
-runs in chunks of ``chunk_ticks``; between chunks the host takes every waiting run through the pymunk runner's
+The runs go through in blocks of :data:`BLOCK` (:func:`advance`), a block with no run left skipped. The planner
+stays on the host (the imperative shell, :func:`run_batch`): plans are made before the batch; the scan runs in
+chunks of ``chunk_ticks``; between chunks the host takes every waiting run through the pymunk runner's
 recovery — what its IR saw joins the planner's map (:func:`evaluation.scenario.with_sensed`), a new plan from where
 it stands (:func:`evaluation.scenario.replan_from`) — writes the new checkpoints and map into the batch's arrays,
 and the batch goes on. A run that waits loses no simulated time, only the rest of its chunk of wall time.
