@@ -100,3 +100,21 @@ def test_a_run_is_the_same_whatever_batch_it_is_in(batch):
     alone = jaxrun.run_scenarios([RUNS[1]], GO, ScenarioConfig(time_limit=60.0))[0]
     assert (alone.time_s, alone.path_m, alone.collisions) == (batch[1].time_s, batch[1].path_m, batch[1].collisions)
     assert np.array_equal(alone.poses, batch[1].poses)
+
+
+@pytest.mark.slow  # 60 runs on each engine, three batches to compile: 2-5 min
+def test_the_two_engines_agree_on_success_in_the_named_worlds_without_movers():
+    # docs/guide/jaxworld.md's agreement table, seeds 0-3: per world and architecture the two success rates' 95 %
+    # Wilson intervals overlap (at 4 runs they exclude each other only for 0 against 4 reached)
+    import ekm
+    from evaluation.compare import wilson
+
+    worlds = "open-arena,three-rooms,three-rooms-static,concave-obstacle,extended-obstacle"
+    rates = {engine: {(r["world"], r["architecture"]): round(r["success_rate"] * r["trials"])
+                      for r in ekm.compare(worlds, "fusion,fields,samba", trials=4, engine=engine, workers=1).rows}
+             for engine in ("pymunk", "jax")}
+    assert len(rates["jax"]) == 15 and rates["jax"].keys() == rates["pymunk"].keys()
+    for cell, k in rates["pymunk"].items():
+        (lo, hi), (lo2, hi2) = wilson(k, 4), wilson(rates["jax"][cell], 4)
+        assert lo <= hi2 and lo2 <= hi, (cell, k, rates["jax"][cell])
+    assert rates["jax"][("open-arena", "fields")] == rates["jax"][("three-rooms", "samba")] == 4
