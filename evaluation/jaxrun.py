@@ -24,8 +24,8 @@ and the batch goes on. A run that waits loses no simulated time, only the rest o
 
 The records are :class:`~evaluation.scenario.RunRecord`'s, built from every live tick's outputs exactly as the
 pymunk runner builds them (poses at every sub-step, the commands, the plans, contact episodes), so outcomes, motion
-measures and results files are the same; ``checkpoint_log`` and ``trap_log`` (what ``ekm run --plot`` marks) are
-not kept. Noise: slip ξ ~ U(-1, 1) and IR ξ ~ N(0, 1) from the run's key, ``jax.random.key(seed)`` split every
+measures and results files are the same; ``checkpoint_log``, ``trap_log`` and ``hits`` (what ``ekm run --plot``
+marks) are not kept. Noise: slip ξ ~ U(-1, 1) and IR ξ ~ N(0, 1) from the run's key, ``jax.random.key(seed)`` split every
 tick — the same distributions as the pymunk world's NumPy streams, not the same draws. Times are float32 (k dt).
 Worlds with movers, timed events or a moving goal are refused (:func:`robots.jaxworld.scene.refuse_unsimulated`).
 """
@@ -33,7 +33,7 @@ Worlds with movers, timed events or a moving goal are refused (:func:`robots.jax
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import partial
 from typing import Any, NamedTuple
 
@@ -296,9 +296,9 @@ class Run:
     replans: int = 0
     trapped_why: str = "trapped"
     collisions: int = 0
-    sensed: list | None = None
-    poses: list | None = None
-    times: list | None = None
+    sensed: list = field(default_factory=list)
+    poses: list = field(default_factory=list)
+    times: list = field(default_factory=list)
 
 
 def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
@@ -314,7 +314,7 @@ def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
     limit = time_limit_for(config, path_length(np.asarray(world.start[:2]), current.checkpoints), robot.max_wheel_speed)
     rec.time_limit_s = limit
     return Run(world, seed, body, current, world, rec, math.ceil(limit / robot.avoid_period - 1e-9),
-               sensed=[], poses=[np.asarray(world.start, float)], times=[0.0])
+               poses=[np.asarray(world.start, float)], times=[0.0])
 
 
 def _taken(run: Run, outs: TickOut, i: int, setup: Setup) -> None:
@@ -343,9 +343,9 @@ def _taken(run: Run, outs: TickOut, i: int, setup: Setup) -> None:
         run.collisions = int(collisions[-1])
 
 
-def finish_run(run: Run, status: int, state: RunState, control) -> RunRecord:
+def finish_run(run: Run, status: int, state: RunState) -> RunRecord:
     """The record of a run that ended with ``status`` in ``state`` (one run's, NumPy): the outcome measured on its
-    traces as :func:`evaluation.scenario.finish` measures it."""
+    traces as :func:`evaluation.scenario.finish` measures it, the controller's state its ``final_state``."""
     rec = run.rec
     rec.ended = run.trapped_why if status == TRAPPED else ENDED[status]
     rec.arrived, rec.trapped = status == ARRIVED, status == TRAPPED
@@ -357,7 +357,7 @@ def finish_run(run: Run, status: int, state: RunState, control) -> RunRecord:
     rec.checkpoints_reached = int(state.passed)
     rec.final_distance_m = float(np.linalg.norm(rec.poses[-1, :2] - np.asarray(run.world.goal_at(rec.times[-1]))))
     rec.reached = rec.arrived and rec.collisions == 0
-    rec.final_state = control
+    rec.final_state = state.control
     return rec
 
 
@@ -439,7 +439,7 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
             host = jax.tree.map(np.array, state)  # a copy: the next chunk reuses the state's buffers
         for k in ended:
             one = jax.tree.map(lambda a: a[k], host)
-            on_done(int(ids[k]), finish_run(slots[k], int(status[k]), one, one.control))
+            on_done(int(ids[k]), finish_run(slots[k], int(status[k]), one))
             open_[k] = False
         if len(ended):  # the open runs first, so that whole blocks of ended ones are skipped
             order = np.argsort(~open_, kind="stable")
