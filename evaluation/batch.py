@@ -46,6 +46,20 @@ def run_batch(batch: Batch, job_list: list, pool, settings: dict, *, out=None, r
 
     Raises :class:`InputError` for a bad results file before any job runs, :class:`Interrupted` on Ctrl-C — with
     a results file, whenever the signal came: the console script holds signals until the file exists."""
+    try:
+        return kept(batch, job_list, settings, lambda done, on_done: run_jobs(job_list, pool, batch.failed, on_done,
+                                                                             done=done),
+                    out=out, resume=resume, progress=progress, stop=pool.stop)
+    finally:
+        pool.close()
+
+
+def kept(batch: Batch, job_list: list, settings: dict, run, *, out=None, resume=None, progress: bool = False,
+         stop=lambda: None) -> list[dict]:
+    """:func:`run_batch`'s shell around any way of running the jobs: ``run(done, on_done)`` makes the records of
+    ``job_list`` but those in ``done`` (``{index: record}``, kept from a resumed file), calls ``on_done(index,
+    record)`` as each finishes and returns them all in the jobs' order; here each goes to the results file and the
+    progress bar as it arrives. On Ctrl-C, ``stop()`` and :class:`Interrupted` with what the file keeps."""
     from ekm import interrupts
 
     store = None
@@ -62,17 +76,16 @@ def run_batch(batch: Batch, job_list: list, pool, settings: dict, *, out=None, r
                     store.append(batch.identity(job_list[i]), record)
                 bar.update(record)
 
-            return run_jobs(job_list, pool, batch.failed, on_done, done=done)
+            return run(done, on_done)
     except KeyboardInterrupt:
         try:
-            pool.stop()
+            stop()
         except KeyboardInterrupt:  # a second Ctrl-C while the workers stop: they are stopping
             pass
         raise Interrupted(stopped(batch, store, len(job_list))) from None
     finally:
         if store is not None:
             store.close()
-        pool.close()
 
 
 def run_jobs(job_list: list, workers, failed, on_done=None, *, done: dict | None = None,

@@ -44,6 +44,7 @@ class Job:
     added: tuple = ()
     robot: str | None = None  # the robot's file as JSON text (robots.robotfile), None for the Khepera
     learn: str | None = None  # the learning rule of the maps that drive (robots.controllers.learner), None: frozen
+    engine: str = "pymunk"  # the world's engine: "pymunk" (evaluation.scenario) or "jax" (evaluation.jaxrun)
 
     def identity(self) -> dict:
         """The run as its results-file line names it (:mod:`evaluation.results`)."""
@@ -54,7 +55,7 @@ class Job:
         robot = robot_from_json(self.robot)
         return {"world": self.world, "architecture": self.architecture, "label": self.label, "trial": self.trial,
                 "seed": self.seed, "map": self.map_path, "robot": robot.name, "robot_fingerprint": robot.fingerprint,
-                "learn": self.learn, "ekm_version": __version__}
+                "learn": self.learn, "engine": self.engine, "ekm_version": __version__}
 
 
 _MAPS: dict = {}
@@ -80,38 +81,57 @@ def run_job(job: Job) -> dict:
     A run that cannot be made is a record too, never the end of a comparison: a world the planner finds no
     route through at any cell, or any exception the run raises, gives :func:`failed_record` with the reason
     in one line that names the world."""
+    from evaluation.scenario import driven, run_scenario
+
+    world = None
+    try:
+        d = job_driver(job)  # first: it registers what the job's script added (a family its world may be of)
+        world = _world(job.world)
+        rec = run_scenario(world, d.controller, seed=job.seed, config=job.config)
+    except Exception as exc:
+        return failed_record(job, failure(job, exc), world.name if world is not None else None,
+                             world_family(world) if world is not None else None)
+    return job_record(job, driven(rec, d))
+
+
+def failure(job: Job, exc: Exception) -> str:
+    """The one-line reason of a run that raised ``exc``: an :class:`~ekm.errors.InputError`'s own line, any other
+    exception's type and first line, led by the job's world when the line does not name it."""
     from ekm.errors import InputError
+
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    reason = text if isinstance(exc, InputError) else f"{type(exc).__name__}: {text}".rstrip(": ")
+    return reason if job.world in reason else f"{job.world}: {reason}"
+
+
+def job_driver(job: Job):
+    """The :class:`evaluation.scenario.Driver` of a job's architecture, map (read once per process), robot and
+    learning rule, for the job's seed."""
     from ekm.mapfile import load_maps
-    from evaluation.scenario import run_architecture
+    from evaluation.scenario import driver
     from robots.controllers.spec import parse_architecture
     from robots.registry import adopt
     from robots.robotfile import robot_from_json
 
-    world, family = None, None
-    try:
-        adopt(job.added)
-        spec = parse_architecture(job.architecture)
-        maps = None
-        if job.map_path and spec.uses_map:
-            if job.map_path not in _MAPS:  # one load per worker process, not one per run
-                _MAPS[job.map_path] = load_maps(job.map_path)
-            maps = _MAPS[job.map_path]
-        world = _world(job.world)
-        family = world_family(world)
-        learn = None
-        if job.learn is not None and spec.uses_map:
-            from robots.controllers.learner import parse_learning
+    adopt(job.added)
+    spec = parse_architecture(job.architecture)
+    maps = None
+    if job.map_path and spec.uses_map:
+        if job.map_path not in _MAPS:  # one load per worker process, not one per run
+            _MAPS[job.map_path] = load_maps(job.map_path)
+        maps = _MAPS[job.map_path]
+    learn = None
+    if job.learn is not None and spec.uses_map:
+        from robots.controllers.learner import parse_learning
 
-            learn = parse_learning(job.learn)
-        rec = run_architecture(world, spec, maps, seed=job.seed, config=job.config, source=job.map_path or "",
-                               robot=robot_from_json(job.robot), learn=learn)
-    except Exception as exc:
-        text = str(exc).splitlines()[0] if str(exc) else ""
-        reason = text if isinstance(exc, InputError) else f"{type(exc).__name__}: {text}".rstrip(": ")
-        if job.world not in reason:
-            reason = f"{job.world}: {reason}"
-        return failed_record(job, reason, world.name if world is not None else None, family)
-    out = {**rec.outcome(), "label": job.label, "trial": job.trial, "given": job.world, "family": family}
+        learn = parse_learning(job.learn)
+    return driver(spec, maps, seed=job.seed, source=job.map_path or "", robot=robot_from_json(job.robot), learn=learn)
+
+
+def job_record(job: Job, rec) -> dict:
+    """A job's record of the run ``rec`` (:func:`run_job`'s answer, whichever engine drove)."""
+    out = {**rec.outcome(), "label": job.label, "trial": job.trial, "given": job.world,
+           "family": world_family(rec.world)}
     if job.keep_path:
         every = max(1, round(rec.period / (rec.times[1] - rec.times[0]))) if len(rec.times) > 1 else 1
         out["path"] = rec.poses[::every, :2].round(5).tolist()
@@ -134,11 +154,11 @@ def world_family(world) -> str | None:
 
 
 def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path: str | None = None,
-         keep_paths: bool = False, robot=None, learn: str | None = None) -> list[Job]:
+         keep_paths: bool = False, robot=None, learn: str | None = None, engine: str = "pymunk") -> list[Job]:
     """Every (architecture, world, trial) of a comparison, in a fixed order — world by world, so that a worker
     plans a world once for all the architectures it runs there; trial 0 keeps its path when ``keep_paths``.
     ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera); ``learn``: the spelling
-    of the learning rule of the maps that drive (None: frozen)."""
+    of the learning rule of the maps that drive (None: frozen); ``engine`` the world's ("pymunk" or "jax")."""
     from robots.registry import added_here
 
     added = added_here()
@@ -149,7 +169,7 @@ def jobs(worlds, specs, trials: int, seed: int, config: ScenarioConfig, map_path
         document = robot_json(robot)
     return [Job(world=w, architecture=str(spec), label=spec.label, trial=i, seed=seed + i, config=config,
                 map_path=map_path, keep_path=keep_paths and i == 0, added=added, robot=document,
-                learn=learn if spec.uses_map else None)
+                learn=learn if spec.uses_map else None, engine=engine)
             for w in worlds for i in range(trials) for spec in specs]
 
 

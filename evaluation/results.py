@@ -3,12 +3,12 @@
 The first line is the header, the comparison's settings::
 
     {"ekm_results": 1, "settings": {"worlds": [...], "architectures": [...], "labels": [...], "trials": 10,
-     "seed": 0, "config": {...}, "map": null, "ekm_version": "0.1.0"}}
+     "seed": 0, "config": {...}, "map": null, "engine": "pymunk", "ekm_version": "0.1.0"}}
 
-then one line per finished run, in the order the runs finished::
+(``engine``: the world the runs drove in, ``pymunk`` or ``jax``; a file that does not say is pymunk's), then one line per finished run, in the order the runs finished::
 
     {"job": {"world": "maze:1003", "architecture": "fields:...", "label": "fields", "trial": 4, "seed": 4,
-             "map": null, "ekm_version": "0.1.0"},
+             "map": null, "engine": "pymunk", "ekm_version": "0.1.0"},
      "outcome": {... the run's record, as evaluation.compare.run_job returns it ...}}
 
 Each line is written whole and flushed as its run arrives, so a crash loses at most the runs in flight;
@@ -202,7 +202,11 @@ def whose(what: str) -> str:
 
 
 #: The settings in the order a difference is reported: the first that differs is the one a user changed.
-ORDER = ("worlds", "labels", "trials", "seed", "architectures", "config", "map", "ekm_version")
+ORDER = ("worlds", "labels", "trials", "seed", "architectures", "engine", "config", "map", "ekm_version")
+
+
+#: Settings a file may not say, and what its silence means: files made before ``ekm compare --engine`` ran on pymunk.
+UNSAID = {"engine": "pymunk"}
 
 
 def _difference(old: dict, new: dict) -> str:
@@ -210,7 +214,7 @@ def _difference(old: dict, new: dict) -> str:
     ``"NAME: OLD in the file, NEW now"`` (for a list, the first item that differs; for the scenario config, the
     first field); "" if none does."""
     for name in ORDER + tuple(sorted(set(old) | set(new) - set(ORDER))):
-        a, b = old.get(name), new.get(name)
+        a, b = old.get(name, UNSAID.get(name)), new.get(name, UNSAID.get(name))
         if a == b:
             continue
         if isinstance(a, dict) and isinstance(b, dict):

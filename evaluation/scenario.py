@@ -262,7 +262,7 @@ def episode(world: World, body, seed: int = 0, config: ScenarioConfig = Scenario
         course = pass_checkpoints(shell, course, t, tick)
         obs, pose, goal = observe(shell, course, t)
         if t < course.turn_until and abs(float(obs.target[0])) > config.turn_tolerance:
-            command = _turn_on_the_spot(float(obs.target[0]), shell.robot)  # recovery: face the new route first
+            command = turn_on_the_spot(float(obs.target[0]), shell.robot)  # recovery: face the new route first
         else:
             course = replace(course, turn_until=0.0)
             if report is not None:
@@ -364,12 +364,7 @@ def start(world: World, body, seed: int, config: ScenarioConfig, spec: str, on_t
     robot = body.robot
     sim = PymunkWorld(world, params=robot, seed=seed)
     rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
-    clear = float(world.clearance(np.asarray(world.start[:2]), 0.0))
-    if clear < robot.radius:
-        raise InputError(f"{world.name}: the robot {robot.name} (radius {robot.radius:g} m) does not fit at the start "
-                         f"{list(world.start[:2])} (clearance {clear:.3f} m)")
-    current = plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine,
-                   padding=robot.radius)
+    current = first_plan(world, robot, config)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
     shell = Shell(world, body, config, sim, TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground,
                                                           config.trap_loop),
@@ -378,15 +373,33 @@ def start(world: World, body, seed: int, config: ScenarioConfig, spec: str, on_t
     return shell, Course(current, world, padded_obstacles(world, 0.0, robot.radius))
 
 
+def first_plan(world: World, robot, config: ScenarioConfig):
+    """The plan a run starts with, from the world's start (raises :class:`InputError` if the robot does not fit
+    there or the planner finds no route)."""
+    clear = float(world.clearance(np.asarray(world.start[:2]), 0.0))
+    if clear < robot.radius:
+        raise InputError(f"{world.name}: the robot {robot.name} (radius {robot.radius:g} m) does not fit at the start "
+                         f"{list(world.start[:2])} (clearance {clear:.3f} m)")
+    return plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine,
+                padding=robot.radius)
+
+
+def replan_from(previous, known: World, position, t: float, robot, config: ScenarioConfig):
+    """A new plan from the robot's ``position`` on the map ``known`` at ``t`` (Fig. 6.5; thesis 7.1.1), or None if
+    the map leaves no way through."""
+    try:
+        return replan(previous, known, position, t, padding=robot.radius, reach=config.start_reach,
+                      refine=config.refine)
+    except InputError:  # NoRouteError included: the change left no way through
+        return None
+
+
 def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
               added=np.zeros((0, 2))) -> Course | None:
     """The course on a new plan from where the robot is, on the map ``known`` (Fig. 6.5; thesis 7.1.1), its
     first checkpoint a new target; None if the map leaves no way through."""
-    try:
-        current = replan(course.plan, known, shell.sim.pose[:2], t, padding=shell.robot.radius,
-                         reach=shell.config.start_reach,
-                         refine=shell.config.refine)
-    except InputError:  # NoRouteError included: the change left no way through
+    current = replan_from(course.plan, known, shell.sim.pose[:2], t, shell.robot, shell.config)
+    if current is None:
         return None
     shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
     shell.monitor.reset(t)
@@ -528,12 +541,12 @@ def finish(shell: Shell, course: Course) -> RunRecord:
     return rec
 
 
-def _turn_on_the_spot(alpha: float, robot) -> np.ndarray:
+def turn_on_the_spot(alpha, robot, xp=np):
     """Wheel speeds ``(2,)`` that turn the robot on the spot towards a target ``alpha`` rad off its heading, at
     half of c*: a disc turning on the spot sweeps nothing, so this can hit nothing the robot is not already
     touching."""
-    v = 0.5 * robot.max_wheel_speed * (1.0 if alpha > 0 else -1.0)
-    return np.array([-v, v])
+    v = 0.5 * robot.max_wheel_speed * xp.where(alpha > 0, 1.0, -1.0)
+    return xp.stack([-v, v])
 
 
 def _seen_later(position, current, index: int, config: ScenarioConfig, sight) -> int:
@@ -571,15 +584,11 @@ def _in_one_loop(step):
     whose types the step changes (which cannot be a loop carry),
     is called as it is.
     """
-    if not isinstance(step, functools.partial) or step.args:
+    parts = split_step(step)
+    if parts is None:
         return step
-    arrays = {k: v for k, v in step.keywords.items() if _is_arrays(v)}
-    static = tuple(sorted((k, v) for k, v in step.keywords.items() if k not in arrays))
-    try:
-        hash(static)
-    except TypeError:
-        return step
-    looped, plain = _looped(step.func, static), False
+    func, arrays, static = parts
+    looped, plain = _looped(func, static), False
 
     def call(state, obs):
         nonlocal plain
@@ -591,6 +600,23 @@ def _in_one_loop(step):
         return step(state, obs)
 
     return call
+
+
+def split_step(step):
+    """``(func, arrays, static)`` of a controller's step built as every architecture builds it — a
+    ``functools.partial`` of a function with keywords only — such that ``step(state, obs)`` is
+    ``func(state, obs, **arrays, **dict(static))``: ``arrays`` the keywords that are pytrees of arrays (the maps,
+    which a batch may hold one of per run), ``static`` the rest as a sorted, hashable tuple (what a compiled
+    program is specialised on). None for any other step."""
+    if not isinstance(step, functools.partial) or step.args:
+        return None
+    arrays = {k: v for k, v in step.keywords.items() if _is_arrays(v)}
+    static = tuple(sorted((k, v) for k, v in step.keywords.items() if k not in arrays))
+    try:
+        hash(static)
+    except TypeError:
+        return None
+    return step.func, arrays, static
 
 
 def _is_arrays(value) -> bool:
@@ -679,19 +705,22 @@ def with_sensed(known: World, points, readings, radius: float, noise: float = 0.
     return replace(known, obstacles=known.obstacles + discs), new
 
 
-def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int | None = None,
-                     config: ScenarioConfig = ScenarioConfig(), on_tick=None, source: str = "given map",
-                     robot=None, learn=None) -> RunRecord:
-    """Run the architecture ``spec`` (:class:`robots.controllers.spec.ArchitectureSpec`) through ``world``.
+@dataclass(frozen=True)
+class Driver:
+    """An architecture ready to drive one run: its ``controller``, the map it drives (``source``, "" for none;
+    ``trial``, None for none; ``map_robot``, the robot the map was trained on) and whether it ``learns``."""
 
-    ``maps``: a :class:`ekm.mapfile.SavedMaps` (``ekm train``'s file), or None for the shipped map of the
-    architecture's chart (:mod:`ekm.data`); ``source`` names a given one in the record. ``trial``: which of
-    its trials drives; by default
-    ``seed % trials``, so that seeds 0–9 run every trained map of a 5-trial file twice, each time with
-    other noise. ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera).
-    ``learn``: a :class:`robots.controllers.learner.LearnParams` — the map goes on learning during the run
-    (the map it ends with is the record's ``learned``) — or None for a frozen map.
-    """
+    controller: Controller
+    source: str = ""
+    trial: int | None = None
+    map_robot: str | None = None
+    learns: bool = False
+
+
+def driver(spec, maps=None, *, seed: int = 0, trial: int | None = None, source: str = "given map", robot=None,
+           learn=None) -> Driver:
+    """The :class:`Driver` of the architecture ``spec`` for the run with ``seed`` (:func:`run_architecture`'s
+    arguments; raises :class:`InputError` for a map, trial or learning rule the architecture cannot take)."""
     import jax
 
     from robots.params import KHEPERA
@@ -702,9 +731,7 @@ def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int
             raise InputError(f"architecture {spec.name} drives no map: drop the map and trial")
         if learn is not None:
             raise InputError(f"architecture {spec.name} drives no map: it has nothing to learn (drop --learn)")
-        rec = run_scenario(world, spec.build(robot=robot), seed=seed, config=config, on_tick=on_tick)
-        rec.map_source, rec.trial = "", None
-        return rec
+        return Driver(spec.build(robot=robot))
     if maps is None:
         from ekm.data import load_default_map
 
@@ -719,13 +746,34 @@ def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int
         from robots.controllers.learner import learning
 
         controller = learning(controller, ekm, maps.cfg, learn)
-    rec = run_scenario(world, controller, seed=seed, config=config, on_tick=on_tick)
-    rec.map_source, rec.trial = source, int(trial)
-    rec.map_robot = map_robot(maps)
-    if learn is not None:
+    return Driver(controller, source, int(trial), map_robot(maps), learn is not None)
+
+
+def driven(rec: RunRecord, d: Driver) -> RunRecord:
+    """``rec`` with what drove it: the map's source, trial and robot, and with learning the map the run ended with
+    (``learned``, from the controller's ``final_state``) and its updates."""
+    rec.map_source, rec.trial, rec.map_robot = d.source, d.trial, d.map_robot
+    if d.learns:
         rec.learned = rec.final_state.ekm
         rec.updates = int(rec.final_state.trace.updates)
     return rec
+
+
+def run_architecture(world: World, spec, maps=None, *, seed: int = 0, trial: int | None = None,
+                     config: ScenarioConfig = ScenarioConfig(), on_tick=None, source: str = "given map",
+                     robot=None, learn=None) -> RunRecord:
+    """Run the architecture ``spec`` (:class:`robots.controllers.spec.ArchitectureSpec`) through ``world``.
+
+    ``maps``: a :class:`ekm.mapfile.SavedMaps` (``ekm train``'s file), or None for the shipped map of the
+    architecture's chart (:mod:`ekm.data`); ``source`` names a given one in the record. ``trial``: which of
+    its trials drives; by default
+    ``seed % trials``, so that seeds 0–9 run every trained map of a 5-trial file twice, each time with
+    other noise. ``robot``: the :class:`~robots.params.RobotParams` that drives (None: the Khepera).
+    ``learn``: a :class:`robots.controllers.learner.LearnParams` — the map goes on learning during the run
+    (the map it ends with is the record's ``learned``) — or None for a frozen map.
+    """
+    d = driver(spec, maps, seed=seed, trial=trial, source=source, robot=robot, learn=learn)
+    return driven(run_scenario(world, d.controller, seed=seed, config=config, on_tick=on_tick), d)
 
 
 def map_robot(maps) -> str:

@@ -11,6 +11,8 @@ from ekm.api.result import Result
 from ekm.errors import InputError
 
 _PROG = "ekm compare"
+#: The robot's worlds a comparison can run in (:func:`compare`'s ``engine``).
+ENGINES = ("pymunk", "jax")
 
 
 @dataclass(frozen=True)
@@ -41,6 +43,7 @@ class Table(Result):
     overall: tuple = ()
     robot: dict | None = None  # {"name", "fingerprint"} of the robot every run drove
     learn: str | None = None  # the learning rule of the maps, None: frozen
+    engine: str = "pymunk"  # the world the runs drove in: "pymunk" or "jax"
 
     def _dict(self) -> dict:
         from ekm.provenance import provenance
@@ -54,7 +57,8 @@ class Table(Result):
                      "reason": r["failed"]} for r in self.records if "failed" in r]
         if failures:
             out["failures"] = failures
-        return {**out, "robot": self.robot, "learn": self.learn, "trials": self.trials, "seed": self.seed,
+        return {**out, "robot": self.robot, "learn": self.learn, "engine": self.engine, "trials": self.trials,
+                "seed": self.seed,
                 "seconds": round(self.seconds, 2),
                 "runs": len(self.records), "workers": self.workers, "config": asdict(self.config), **provenance()}
 
@@ -122,7 +126,7 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
             trials: int = 10, seed: int = 0, maps=None, recover: bool = True,
             time_limit: float | None = None, checkpoints: str = "visible", cell: float | None = None,
             workers: int | None = None, scheduler: str | None = None, out=None, resume=None,
-            robot=None, learn=None, progress: bool = False) -> Table:
+            robot=None, learn=None, engine: str = "pymunk", progress: bool = False) -> Table:
     """Run every architecture in every world ``trials`` times, in parallel, and summarise success with 95 %
     intervals (thesis ch. 6.2 at scale). Trial i runs with seed ``seed + i`` for every architecture and
     world (the same noise for all of them), so the result does not depend on ``workers`` or ``scheduler``.
@@ -173,6 +177,11 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     learn : str or bool, optional
         The maps of the architectures that drive one go on learning during each run (:func:`ekm.run`'s
         ``learn``); every run starts from the same map. Default: frozen.
+    engine : {"pymunk", "jax"}, default "pymunk"
+        The robot's world: pymunk (the reference, one run at a time on ``workers``), or the JAX engine
+        (:mod:`evaluation.jaxrun`: each architecture's runs in one batch in this process, on the devices JAX has;
+        worlds with movers, timed events or a moving goal are refused; docs/guide/jaxworld.md). The results file
+        records it: a file of one engine is never resumed with the other.
     progress : bool, default False
         Show a progress bar (runs done, failed, time left) on stderr.
 
@@ -207,6 +216,11 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     from evaluation.workers import workers_for
     from robots.controllers.spec import parse_architectures
 
+    if engine not in ENGINES:
+        raise InputError(f"--engine: must be one of {', '.join(ENGINES)}, got {engine!r}")
+    if engine == "jax" and (workers not in (None, 1) or scheduler is not None):
+        raise InputError("--engine jax runs every architecture's runs in one batch in this process: drop --workers "
+                         "and --scheduler")
     trials = whole(trials, "--trials", _PROG, strict=True)
     seed = whole(seed, "--seed", _PROG, strict=False)
     config = scenario_config(_PROG, time_limit=time_limit, recover=recover, checkpoints=checkpoints, cell=cell)
@@ -236,19 +250,37 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
         learning = spell_learning(parse_learning(learn))
         if not any(s.uses_map for s in specs):
             raise InputError("--learn: none of the architectures drives a map, so none has anything to learn")
-    job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True, robot=robot, learn=learning)
+    if engine == "jax":
+        from robots.jaxworld.scene import refuse_unsimulated
+
+        for w in names:  # every world, before any run: one line for the first the engine cannot simulate
+            refuse_unsimulated(load_world(w))
+    job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True, robot=robot, learn=learning,
+                    engine=engine)
     settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)
         "worlds": names, "architectures": [str(s) for s in specs], "labels": labels, "trials": trials, "seed": seed,
         "config": asdict(config), "map": map_path, "robot": {"name": robot.name, "fingerprint": robot.fingerprint},
-        "learn": learning, "ekm_version": _version()}))
-    pool = workers_for(run_job, workers, scheduler)
+        "learn": learning, "engine": engine, "ekm_version": _version()}))
     t0 = time.perf_counter()
-    records = run_batch(COMPARISON, job_list, pool, settings, out=out, resume=resume, progress=progress)
+    if engine == "jax":
+        import jax
+
+        from evaluation.batch import kept
+        from evaluation.jaxrun import run_jobs
+
+        where = f"the JAX engine ({', '.join(str(d) for d in jax.devices())})"
+        records = kept(COMPARISON, job_list, settings, lambda done, on_done: run_jobs(job_list, on_done, done=done),
+                       out=out, resume=resume, progress=progress)
+    else:
+        pool = workers_for(run_job, workers, scheduler)
+        where = pool.where
+        records = run_batch(COMPARISON, job_list, pool, settings, out=out, resume=resume, progress=progress)
     seconds = time.perf_counter() - t0
     return Table(rows=tuple(summarize(records, names, labels)), worlds=tuple(names), labels=tuple(labels),
-                 trials=trials, seed=seed, seconds=seconds, workers=pool.where, config=config,
+                 trials=trials, seed=seed, seconds=seconds, workers=where, config=config,
                  records=tuple(records), families=tuple(by_family(records, labels)),
-                 overall=tuple(by_architecture(records, labels)), robot=settings["robot"], learn=learning)
+                 overall=tuple(by_architecture(records, labels)), robot=settings["robot"], learn=learning,
+                 engine=engine)
 
 
 def load_comparison(path) -> Table:
@@ -258,7 +290,7 @@ def load_comparison(path) -> Table:
     Raises :class:`ekm.InputError` if the file is not a results file or does not hold every run (then
     ``ekm compare … --resume PATH`` finishes it)."""
     from evaluation.compare import by_architecture, by_family, summarize
-    from evaluation.results import key, kind, read, whose
+    from evaluation.results import UNSAID, key, kind, read, whose
     from evaluation.scenario import ScenarioConfig
 
     settings, records = read(path)
@@ -277,7 +309,8 @@ def load_comparison(path) -> Table:
                  trials=trials, seed=settings["seed"], seconds=0.0, workers=f"results file {path}",
                  config=ScenarioConfig(**settings["config"]), records=tuple(ordered),
                  families=tuple(by_family(ordered, labels)), overall=tuple(by_architecture(ordered, labels)),
-                 robot=settings.get("robot"), learn=settings.get("learn"))
+                 robot=settings.get("robot"), learn=settings.get("learn"),
+                 engine=settings.get("engine", UNSAID["engine"]))
 
 
 def _version() -> str:

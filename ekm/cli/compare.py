@@ -33,6 +33,9 @@ def add_parser(sub) -> None:
     p.add_argument("--seed", type=nonneg_int, default=0,
                    help="trial i runs with seed SEED + i for every architecture and world (default 0)")
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
+    p.add_argument("--engine", choices=("pymunk", "jax"), default="pymunk",
+                   help="the robot's world: pymunk (default, the reference) or jax (each architecture's runs in one "
+                        "batch in this process; no movers, timed events or moving goals; docs/guide/jaxworld.md)")
     add_scenario_options(p)
     add_robot_options(p, "; every run starts from the same map")
     add_batch_options(p, "run", "finish the comparison of this results file (the same arguments as the one that made "
@@ -64,7 +67,7 @@ def run(args) -> None:
                         trials=args.trials, seed=args.seed, maps=args.map, recover=args.recover,
                         time_limit=args.time_limit, checkpoints=args.checkpoints, cell=args.cell,
                         workers=args.workers, scheduler=args.scheduler, out=args.out, resume=args.resume,
-                        robot=args.robot, learn=args.learn, progress=show_progress(args))
+                        robot=args.robot, learn=args.learn, engine=args.engine, progress=show_progress(args))
     if plot:
         table.save_plot(plot)
     if args.json:

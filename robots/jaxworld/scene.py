@@ -11,7 +11,7 @@ Every shape of a :class:`~robots.worldfile.World` becomes one of two primitives,
 Arrays are padded to fixed sizes — ``C`` capsules, ``P`` polygons of ``V`` vertices — with a mask, so that worlds of
 different sizes and shapes share one batch (:func:`stack_scenes`) and one compiled program. Lengths in metres.
 
-Moving obstacles and timed events are not represented: :func:`scene_of` refuses a world that has them
+Moving obstacles, timed events and moving goals are not represented: :func:`scene_of` refuses a world that has them
 (:class:`ekm.errors.InputError`, one line); run such worlds on the pymunk engine.
 """
 
@@ -42,14 +42,28 @@ class Scene(NamedTuple):
     edge_on: object
 
 
+def unsimulated(world: World) -> list[str]:
+    """What ``world`` has that the JAX engine does not simulate: "moving obstacles", "timed events", "a moving
+    goal" (empty: it runs)."""
+    return [what for what, has in (("moving obstacles", world.moving), ("timed events", world.events),
+                                   ("a moving goal", world.moving_goal)) if has]
+
+
+def refuse_unsimulated(world: World) -> None:
+    """Raise :class:`InputError` — one line naming the world and all it has that the engine does not simulate —
+    unless :func:`unsimulated` is empty."""
+    what = unsimulated(world)
+    if what:
+        listed = what[0] if len(what) == 1 else ", ".join(what[:-1]) + " and " + what[-1]
+        raise InputError(f"engine jax: world {world.name!r} has {listed}, which the JAX engine does not simulate; "
+                         f"use the pymunk engine")
+
+
 def primitives(world: World) -> tuple[list, list]:
     """The world's capsules ``[(a, b, r)]`` and convex polygons ``[vertices (k, 2), ccw]``, pymunk's shapes."""
     from robots.world import convex_pieces
 
-    if world.moving or world.events:
-        what = "moving obstacles" if world.moving else "timed events"
-        raise InputError(f"engine jax: world {world.name!r} has {what}, which the JAX engine does not simulate; "
-                         f"use the pymunk engine")
+    refuse_unsimulated(world)
     half = 0.5 * world.wall_thickness
     caps = [(w.start, w.end, half) for w in world.border + world.walls]
     polys = []

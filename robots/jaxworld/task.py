@@ -33,7 +33,7 @@ import numpy as np
 from robots import kinematics
 from robots.jaxworld import engine
 from robots.jaxworld.collide import clearance, gaps
-from robots.jaxworld.scene import Scene, scene_of
+from robots.jaxworld.scene import Scene, refuse_unsimulated, scene_of
 from robots.params import KHEPERA, RobotParams, SensorSet
 from robots.sensors import ir_readings
 
@@ -90,12 +90,9 @@ def make_task(world, config: TaskConfig = TaskConfig(), checkpoints: str = "visi
     number), the scene to ``shape`` (``(C, P, V)``, :func:`robots.jaxworld.scene.scene_of`)."""
     from dataclasses import replace as dc_replace
 
-    from ekm.errors import InputError
     from planner import plan
 
-    if world.moving_goal:
-        raise InputError(f"engine jax: world {world.name!r} has a moving goal, which the JAX task does not follow; "
-                         f"use the pymunk environment")
+    refuse_unsimulated(world)
     route = plan(world, t=0.0, checkpoints=checkpoints, padding=config.params.radius).checkpoints
     route = np.asarray(route, np.float32)
     slots = len(route) if slots is None else slots
@@ -117,21 +114,37 @@ def _route(pose, index, task: Task):
     return jnp.linalg.norm(pose[:2] - task.checkpoints[index]) + task.legs[index]
 
 
-def _sees_next(pos, index, task: Task, config: TaskConfig):
-    """Within ``pass_radius`` of checkpoint ``index`` and a clear line to the next (module docstring)."""
-    nxt = task.checkpoints[jnp.minimum(index + 1, task.checkpoints.shape[0] - 1)]
-    radius = config.params.radius
-    slack_line = clearance(pos, nxt, task.sight) - radius
-    slack_here = jnp.min(gaps(pos, task.sight)[0]) - radius
-    near = jnp.linalg.norm(pos - task.checkpoints[index]) <= config.pass_radius
-    return near & (slack_line >= jnp.minimum(0.015, slack_here) - 0.003)
+def sight_need(pos, sight: Scene, radius: float):
+    """The slack (m) a straight line from ``pos`` ``(2,)`` must keep from the known shapes ``sight`` beyond the
+    robot's ``radius`` to count as seen: ``min(MARGIN / 2, the robot's own slack here) - TOLERANCE``
+    (:func:`evaluation.scenario._sees_next`'s rule, :mod:`planner.visibility`'s constants)."""
+    from planner.visibility import MARGIN, TOLERANCE
+
+    return jnp.minimum(0.5 * MARGIN, jnp.min(gaps(pos, sight)[0]) - radius) - TOLERANCE
+
+
+def sees(pos, point, sight: Scene, radius: float, need):
+    """Whether the straight line from ``pos`` to ``point`` ``(2,)`` keeps ``need`` (:func:`sight_need`) beyond the
+    robot's ``radius`` from every shape of ``sight`` — exact segment distances, where :mod:`planner.visibility`
+    samples the line every 2 mm (so the two may differ by a millimetre of slack)."""
+    return clearance(pos, point, sight) - radius >= need
+
+
+def sees_next(pos, checkpoints, index, sight: Scene, radius: float, pass_radius: float):
+    """Within ``pass_radius`` of ``checkpoints[index]`` ``(K, 2)`` and seeing the next one (:func:`sees`): the
+    checkpoint was a corner to get round, and from ``pos`` there is nothing left to get round."""
+    nxt = checkpoints[jnp.minimum(index + 1, checkpoints.shape[0] - 1)]
+    near = jnp.linalg.norm(pos - checkpoints[index]) <= pass_radius
+    return near & sees(pos, nxt, sight, radius, sight_need(pos, sight, radius))
 
 
 def _pass(pos, index, task: Task, config: TaskConfig):
     """The checkpoint headed for after those already within reach or seen past (at most two a tick)."""
+    radius = config.params.radius
     for _ in range(2):
         within = jnp.linalg.norm(pos - task.checkpoints[index]) < config.tolerance
-        index = jnp.where((index < task.last) & (within | _sees_next(pos, index, task, config)), index + 1, index)
+        seen = sees_next(pos, task.checkpoints, index, task.sight, radius, config.pass_radius)
+        index = jnp.where((index < task.last) & (within | seen), index + 1, index)
     return index
 
 

@@ -61,6 +61,7 @@ def test_resume_keeps_the_whole_lines_and_drops_one_cut_short(tmp_path):
      "architectures: fields:form=extended in the file, fields:form=thesis now"),
     ({"config": {"time_limit": 60.0, "recover": True}}, "config.time_limit: 120.0 in the file, 60.0 now"),
     ({"ekm_version": "0.2.0"}, "ekm_version: 0.1.0 in the file, 0.2.0 now"),
+    ({"engine": "jax"}, "engine: pymunk in the file, jax now"),  # a file that does not say ran on pymunk
 ])
 def test_a_file_from_other_settings_is_refused_naming_the_first_difference(tmp_path, change, message):
     path = tmp_path / "r.jsonl"
@@ -68,6 +69,15 @@ def test_a_file_from_other_settings_is_refused_naming_the_first_difference(tmp_p
     with pytest.raises(InputError) as err:
         ResultsFile(path, {**SETTINGS, **change}, resume=True)
     assert str(err.value) == f"--resume {path}: made with other settings ({message})"
+
+
+def test_a_file_that_does_not_name_its_engine_resumes_on_pymunk_and_one_of_jax_only_on_jax(tmp_path):
+    old, jax_file = tmp_path / "old.jsonl", tmp_path / "jax.jsonl"
+    ResultsFile(old, SETTINGS).close()
+    ResultsFile(old, {**SETTINGS, "engine": "pymunk"}, resume=True).close()
+    ResultsFile(jax_file, {**SETTINGS, "engine": "jax"}).close()
+    with pytest.raises(InputError, match=r"engine: jax in the file, pymunk now"):
+        ResultsFile(jax_file, {**SETTINGS, "engine": "pymunk"}, resume=True)
 
 
 @pytest.mark.parametrize("text, message", [

@@ -47,6 +47,22 @@ def test_bad_input_is_one_line_before_any_run(cli, monkeypatch, argv, message):
     assert code == 2 and out == "" and message in err and err.count("\n") == 1
 
 
+@pytest.mark.parametrize("argv, message", [
+    (["--worlds", "open-arena,three-rooms-moving"], "error: engine jax: world 'three-rooms-moving' has moving "
+                                                    "obstacles, which the JAX engine does not simulate; use the "
+                                                    "pymunk engine\n"),
+    (["--worlds", "moving-target"], "world 'moving-target' has a moving goal"),
+    (["--suite", "corridor:1,movers:1"], "world 'movers:1000' has moving obstacles"),
+    (["--worlds", "open-arena", "--workers", "2"], "drop --workers and --scheduler"),
+])
+def test_the_jax_engine_refuses_what_it_cannot_run_in_one_line_before_any_run(cli, monkeypatch, argv, message):
+    import evaluation.jaxrun as jaxrun
+
+    monkeypatch.setattr(jaxrun, "run_jobs", lambda *a, **k: pytest.fail("a run started"))
+    code, out, err = cli("compare", "--engine", "jax", "--architectures", "schema", *argv)
+    assert code == 2 and out == "" and message in err and err.count("\n") == 1
+
+
 def test_a_comparison_resumed_from_its_results_file_gives_the_same_json(cli, tmp_path):
     """Eight runs written to --out; the file cut after three runs and half a line (a crash); --resume makes
     the five missing runs, and the JSON is the uninterrupted one's; --from makes it again with no runs."""

@@ -1,0 +1,575 @@
+"""The scenario runner on the JAX engine: many runs of one architecture in one batch (docs/guide/jaxworld.md).
+
+:func:`evaluation.scenario.run_scenario` runs one robot in the pymunk world, a Python loop calling one jitted step a
+tick. Here one batch holds one architecture's runs over many (world, seed) pairs, and a tick of all of them is one
+``vmap`` inside one jitted ``lax.scan``. Each tick does for every run what the pymunk runner's ``episode`` does:
+
+1. pass the checkpoints already within reach or seen past (``pass_checkpoints``: within 5 mm, or near one whose
+   successor the robot sees; every ``look_every`` ticks the last of ``look_ahead`` later ones it sees);
+2. sense (the IR with its noise, :func:`robots.jaxworld.engine.sense`) and hand the controller its
+   :class:`~robots.controllers.base.Observation`; after a recovery the robot turns on the spot instead, for at most
+   ``turn_s``, until the route is ahead (the controller is not stepped on those ticks);
+3. stop at the goal: within 5 mm of it, a command that rounds to zero, or ``settle_s`` spent there, ends the run
+   after one period of a zero command;
+4. drive one period (:func:`robots.jaxworld.engine.step`); a sub-step within 5 mm of the checkpoint reaches it;
+5. the trap monitor (:mod:`evaluation.jaxmonitor`, :class:`~evaluation.monitor.TrapMonitor`'s rule): trapped, the
+   run ends — or, with recovery, **waits** for the host.
+
+The runs go through in blocks of :data:`BLOCK` (:func:`advance`), a block with no run left skipped. The planner
+stays on the host (the imperative shell, :func:`run_batch`): plans are made before the batch; the scan runs in
+chunks of ``chunk_ticks``; between chunks the host takes every waiting run through the pymunk runner's
+recovery — what its IR saw joins the planner's map (:func:`evaluation.scenario.with_sensed`), a new plan from where
+it stands (:func:`evaluation.scenario.replan_from`) — writes the new checkpoints and map into the batch's arrays,
+and the batch goes on. A run that waits loses no simulated time, only the rest of its chunk of wall time.
+
+The records are :class:`~evaluation.scenario.RunRecord`'s, built from every live tick's outputs exactly as the
+pymunk runner builds them (poses at every sub-step, the commands, the plans, contact episodes), so outcomes, motion
+measures and results files are the same; ``checkpoint_log``, ``trap_log`` and ``hits`` (what ``ekm run --plot``
+marks) are not kept. Noise: slip ξ ~ U(-1, 1) and IR ξ ~ N(0, 1) from the run's key, ``jax.random.key(seed)`` split every
+tick — the same distributions as the pymunk world's NumPy streams, not the same draws. Times are float32 (k dt).
+Worlds with movers, timed events or a moving goal are refused (:func:`robots.jaxworld.scene.refuse_unsimulated`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import partial
+from typing import Any, NamedTuple
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from evaluation import jaxmonitor
+from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, replan_from, sensed_points,
+                                 split_step, time_limit_for, turn_on_the_spot, with_sensed)
+from robots import kinematics
+from robots.controllers.base import Observation
+from robots.jaxworld import engine
+from robots.jaxworld.scene import Scene, refuse_unsimulated, scene_of, sizes
+from robots.jaxworld.task import sees, sees_next, sight_need
+from robots.params import RobotParams, SensorSet
+
+#: A run's status: ticking, waiting for the host to replan (recovery), or ended — and how.
+RUNNING, WAITING, ARRIVED, TRAPPED, TIMEOUT = 0, 1, 2, 3, 4
+ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit"}
+
+#: Runs stepped together as one ``vmap`` (the blocks of :func:`advance`).
+BLOCK = 32
+
+#: Ticks of one chunk of the scan (4.1 s of 0.128 s ticks): how long a run that needs a new plan may wait for it.
+CHUNK_TICKS = 32
+
+
+@dataclass(frozen=True)
+class Setup:
+    """What every run of a batch shares (static under ``jit``): the robot and its IR ring, the period's sub-steps
+    ``n`` and slip draws ``k``, the scenario's rules (:class:`~evaluation.scenario.ScenarioConfig`), the trap
+    monitor's, and the controller's step as :func:`~evaluation.scenario.split_step` splits it (``func``,
+    ``static``)."""
+
+    params: RobotParams
+    sensors: SensorSet
+    n: int
+    k: int
+    config: ScenarioConfig
+    rule: jaxmonitor.MonitorRule
+    func: Any
+    static: tuple
+
+    @property
+    def visible(self) -> bool:
+        """Whether the plans' checkpoints see each other (the ``visible`` rule): only then are they passed early."""
+        return self.config.checkpoints == "visible"
+
+
+class Route(NamedTuple):
+    """One run's arrays that the host sets (a leading batch axis in a batch): ``scene`` every shape of its world,
+    ``sight`` the planner's map (known shapes and what recovery added), ``checkpoints`` ``(K, 2)`` (goal at
+    ``last``, padded by repeating it), ``ticks`` its time limit in ticks, ``may_recover`` whether a trap waits for a
+    new plan (else it ends the run)."""
+
+    scene: Scene
+    sight: Scene
+    checkpoints: Any
+    last: Any
+    ticks: Any
+    may_recover: Any
+
+
+class RunState(NamedTuple):
+    """One run's state between ticks: the engine's, the controller's (``control``), the PRNG ``key``, ``tick``s
+    taken, the checkpoint ``index`` headed for and the ``target_id`` the controller sees, whether it stood within the
+    goal's tolerance last tick (``settled``) and ``since`` when (s), until when it turns after a recovery
+    (``turn_until``, s), the trap monitor, ``status`` (:data:`RUNNING` …), checkpoints ``passed`` (the goal too) and
+    the time (s) of the tick it stopped at the goal (``stop_t``)."""
+
+    engine: engine.EngineState
+    control: Any
+    key: Any
+    tick: Any
+    index: Any
+    target_id: Any
+    settled: Any
+    since: Any
+    turn_until: Any
+    monitor: jaxmonitor.MonitorState
+    status: Any
+    passed: Any
+    stop_t: Any
+
+
+class TickOut(NamedTuple):
+    """What one tick leaves for the record: ``live`` (the run was ticking), the ``pose`` ``(3,)`` and ``ir``
+    ``(m,)`` it sensed, the ``command`` ``(2,)`` sent and whether it was the architecture's or recovery's
+    (``commanded``; not on the stop at the goal), the sub-step ``trace`` ``(n, 3)``, contact episodes so far."""
+
+    live: Any
+    pose: Any
+    ir: Any
+    command: Any
+    commanded: Any
+    trace: Any
+    collisions: Any
+
+
+def _where(flag, new, old):
+    return jax.tree.map(lambda a, b: jnp.where(flag, a, b), new, old)
+
+
+def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
+    """Step 1 (:func:`evaluation.scenario.pass_checkpoints`): ``(index, passed)`` after the checkpoints within
+    ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past; then, on every
+    ``look_every``-th tick, the last of the ``look_ahead`` later ones seen from ``pos``."""
+    config, radius, cps = setup.config, setup.params.radius, route.checkpoints
+
+    def passes(i):
+        within = jnp.linalg.norm(pos - cps[i]) < config.checkpoint_tolerance
+        if setup.visible:
+            within = within | sees_next(pos, cps, i, route.sight, radius, config.pass_radius)
+        return (i < route.last) & within
+
+    start = index
+    index = jax.lax.while_loop(passes, lambda i: i + 1, index)
+    if setup.visible and config.look_ahead:
+        need = sight_need(pos, route.sight, radius)
+        ahead = jnp.minimum(index + jnp.arange(1, config.look_ahead + 1), route.last)
+        seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[ahead])
+        later = jnp.max(jnp.where(seen, ahead, index))  # the farthest seen
+        index = jnp.where((tick % config.look_every == 0) & (index < route.last), later, index)
+    return index, index - start
+
+
+def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState, TickOut]:
+    """One 0.128 s tick of one run (the module docstring's steps); a run not :data:`RUNNING` stays as it is."""
+    p, config = setup.params, setup.config
+    key, k_ir, k_slip = jax.random.split(state.key, 3)
+    t = state.engine.k.astype(jnp.float32) * p.dt
+    pose = state.engine.robot.pose
+    pos = pose[:2]
+    index, passed = pass_checkpoints(setup, route, pos, state.index, state.tick)
+    monitor = jaxmonitor.reset(state.monitor, t, passed > 0)
+    target_id = state.target_id + passed
+    final = index == route.last
+    goal = route.checkpoints[index]
+
+    noise = jax.random.normal(k_ir, (len(setup.sensors.angles),))
+    ir = engine.sense(state.engine, route.scene, setup.sensors, noise, p)
+    target = kinematics.egocentric(pose, goal, xp=jnp)
+    obs = Observation(t=t, ir=ir.astype(jnp.float32), target=target.astype(jnp.float32), target_id=target_id,
+                      final=final, pose=pose, target_velocity=jnp.zeros(2, jnp.float32),
+                      markers=jnp.zeros((0, 5), jnp.float32))
+    turning = (t < state.turn_until) & (jnp.abs(target[0]) > config.turn_tolerance)
+    control, wanted = setup.func(state.control, obs, **arrays, **dict(setup.static))
+    control = _where(turning, state.control, control)
+    command = jnp.where(turning, turn_on_the_spot(target[0], p, jnp), jnp.asarray(wanted, jnp.float32))
+    turn_until = jnp.where(turning, state.turn_until, 0.0)
+
+    inside = final & (jnp.linalg.norm(pos - goal) < config.checkpoint_tolerance)
+    since = jnp.where(inside & state.settled, state.since, t)
+    stop = inside & (kinematics.is_stop_command(command, p, jnp) | (t - since >= config.settle_s - 1e-9))
+
+    slip = jax.random.uniform(k_slip, (setup.k, 2), minval=-1.0, maxval=1.0)
+    eng, trace = engine.step(state.engine, route.scene, jnp.where(stop, 0.0, command), slip, p, setup.n)
+    t_end = eng.k.astype(jnp.float32) * p.dt
+    near = ~stop & ~final & jnp.any(jnp.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance)
+    index = index + near
+    monitor = jaxmonitor.reset(monitor, t_end, near)
+    watched, trapped = jaxmonitor.update(monitor, t_end, jnp.linalg.norm(eng.robot.pose[:2] - route.checkpoints[index]),
+                                         eng.robot.pose[:2], setup.rule)
+    watch = ~stop & ~near
+    monitor = _where(watch, watched, monitor)
+    trapped = watch & trapped
+    status = jnp.where(stop, ARRIVED, jnp.where(trapped, jnp.where(route.may_recover, WAITING, TRAPPED), RUNNING))
+    ticks = state.tick + 1
+    status = jnp.where((status == RUNNING) & (ticks >= route.ticks), TIMEOUT, status).astype(jnp.int32)
+
+    new = RunState(engine=eng, control=control, key=key, tick=ticks, index=index, target_id=target_id + near,
+                   settled=inside, since=since, turn_until=turn_until, monitor=monitor, status=status,
+                   passed=state.passed + passed + near + stop, stop_t=jnp.where(stop, t, state.stop_t))
+    live = state.status == RUNNING
+    out = TickOut(live=live, pose=pose, ir=ir, command=command, commanded=~stop, trace=trace,
+                  collisions=eng.collisions)
+    return _where(live, new, state), out
+
+
+@partial(jax.jit, static_argnames=("setup", "block", "length"), donate_argnums=(3,))
+def advance(setup: Setup, block: int, routes: Route, state: RunState, arrays, length: int = CHUNK_TICKS):
+    """``length`` ticks of every run of a batch (leading axis B, a multiple of ``block``, on ``routes``, ``state``
+    and ``arrays``): the new state and every tick's :class:`TickOut` ``(B, length, ...)``.
+
+    The runs go through in blocks of ``block`` — ``lax.map`` over blocks, each block's ticks one ``lax.scan`` of a
+    ``vmap`` — for two reasons: a block's arrays stay in cache, where one ``vmap`` of hundreds of runs is several
+    times slower on a CPU (docs/performance.md, the world in JAX); and a block none of whose runs is
+    :data:`RUNNING` is skipped (``lax.cond``), so the host, which puts the open runs first, pays only for the
+    blocks that hold them while a batch's last runs finish."""
+    one = jax.vmap(partial(tick, setup))
+
+    def go(x):
+        route, s, arr = x
+        s, outs = jax.lax.scan(lambda c, _: one(route, c, arr), s, None, length=length)
+        return s, jax.tree.map(lambda a: jnp.swapaxes(a, 0, 1), outs)
+
+    def run(x):
+        shapes = jax.eval_shape(go, x)[1]
+        return jax.lax.cond(jnp.any(x[1].status == RUNNING), go,
+                            lambda y: (y[1], jax.tree.map(lambda d: jnp.zeros(d.shape, d.dtype), shapes)), x)
+
+    b = state.tick.shape[0]
+    blocks = jax.tree.map(lambda a: a.reshape((b // block, block) + a.shape[1:]), (routes, state, arrays))
+    state, outs = jax.lax.map(run, blocks)
+    return jax.tree.map(lambda a: a.reshape((b,) + a.shape[2:]), (state, outs))
+
+
+def _bucket(n: int) -> int:
+    """The padded size that holds ``n``: the next power of two (few shapes, so few compilations)."""
+    return 1 << max(0, int(n) - 1).bit_length()
+
+
+def _sight_world(known):
+    """The planner's map as shapes the JAX engine can measure: the known world less its unforeseen obstacles."""
+    return replace(known, unforeseen=())
+
+
+def _stack(scenes: list) -> Scene:
+    return Scene(*(np.stack(leaves) for leaves in zip(*scenes)))
+
+
+#: Capsules a batch's planner maps keep free for the discs recovery adds (a trap typically adds tens): a map that
+#: outgrows its padding makes the batch compile again.
+ROOM = 128
+
+
+#: Checkpoint slots kept free for a new plan longer than the first (recovery): likewise.
+SLOTS = 8
+
+
+def _scenes(worlds: list, room: int = 0) -> Scene:
+    """The scenes of ``worlds`` stacked, padded to one shape with ``room`` capsules to spare, their number rounded up
+    to a power of two (few shapes, few compilations)."""
+    need = np.max([sizes(w) for w in worlds], axis=0)
+    shape = (_bucket(need[0] + room), int(need[1]), int(need[2]))
+    return _stack([scene_of(w, shape) for w in worlds])
+
+
+def _padded(checkpoints: list, slots: int) -> np.ndarray:
+    return np.stack([np.concatenate([c, np.repeat(c[-1:], slots - len(c), axis=0)]) for c in checkpoints]) \
+        .astype(np.float32)
+
+
+@dataclass
+class Run:
+    """One run's host side: its world, seed and body (the controller: robot and sensors), the plan it follows and
+    the planner's map (``known``), recoveries so far, the record being written, and every tick's sensing on which
+    the IR saw something (``sensed``: (t, pose, readings, markers), as :func:`evaluation.scenario.sensed_points`
+    takes it)."""
+
+    world: Any
+    seed: int
+    body: Any
+    plan: Any
+    known: Any
+    rec: RunRecord
+    ticks: int
+    recoveries: int = 0
+    replans: int = 0
+    trapped_why: str = "trapped"
+    collisions: int = 0
+    sensed: list = field(default_factory=list)
+    poses: list = field(default_factory=list)
+    times: list = field(default_factory=list)
+
+
+def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
+    """A run's host side at t = 0: its first plan and time limit (raises :class:`~ekm.errors.InputError` for a world
+    the engine does not simulate, a start the robot does not fit or no route)."""
+    from planner.checkpoints import path_length
+
+    refuse_unsimulated(world)
+    robot = body.robot
+    current = first_plan(world, robot, config)
+    rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
+    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
+    limit = time_limit_for(config, path_length(np.asarray(world.start[:2]), current.checkpoints), robot.max_wheel_speed)
+    rec.time_limit_s = limit
+    return Run(world, seed, body, current, world, rec, math.ceil(limit / robot.avoid_period - 1e-9),
+               poses=[np.asarray(world.start, float)], times=[0.0])
+
+
+def _taken(run: Run, outs: TickOut, i: int, setup: Setup) -> None:
+    """Append run ``i``'s live ticks of one chunk's outputs ``outs`` (NumPy, ``(B, ticks, ...)``) to its record —
+    a prefix of the chunk: a run leaves :data:`RUNNING` at most once in a chunk."""
+    live = np.flatnonzero(outs.live[i])
+    if not len(live):
+        return
+    dt, n = setup.params.dt, setup.n
+    t0 = run.times[-1]
+    starts = t0 + n * dt * np.arange(len(live))  # each tick's time
+    poses, irs, commands = outs.pose[i, live].astype(float), outs.ir[i, live].astype(float), outs.command[i, live]
+    commanded, collisions = outs.commanded[i, live], outs.collisions[i, live]
+    for j in np.flatnonzero(np.isfinite(irs).any(axis=1)):
+        run.sensed.append((starts[j], poses[j], irs[j], np.zeros((0, 5), np.float32)))
+    run.rec.commands.extend((starts[j], float(commands[j, 0]), float(commands[j, 1]))
+                            for j in np.flatnonzero(commanded))
+    trace = outs.trace[i, live].astype(float)
+    run.poses.extend(trace.reshape(-1, 3))
+    run.times.extend(t0 + dt * np.arange(1, len(live) * n + 1))
+    for j in np.flatnonzero(commanded & (collisions > np.concatenate([[run.collisions], collisions[:-1]]))):
+        new = int(collisions[j]) - (run.collisions if j == 0 else int(collisions[j - 1]))
+        end = starts[j] + n * dt
+        run.rec.collision_log.extend([(end, float(trace[j, -1, 0]), float(trace[j, -1, 1]))] * new)
+    if commanded[-1]:  # as the pymunk runner's drive logs them: not on the stop at the goal
+        run.collisions = int(collisions[-1])
+
+
+def finish_run(run: Run, status: int, state: RunState) -> RunRecord:
+    """The record of a run that ended with ``status`` in ``state`` (one run's, NumPy): the outcome measured on its
+    traces as :func:`evaluation.scenario.finish` measures it, the controller's state its ``final_state``."""
+    rec = run.rec
+    rec.ended = run.trapped_why if status == TRAPPED else ENDED[status]
+    rec.arrived, rec.trapped = status == ARRIVED, status == TRAPPED
+    rec.replans, rec.recoveries = run.replans, run.recoveries
+    rec.poses, rec.times = np.asarray(run.poses), np.asarray(run.times)
+    rec.time_s = float(state.stop_t) if rec.arrived else float(rec.times[-1])
+    rec.path_m = float(np.linalg.norm(np.diff(rec.poses[:, :2], axis=0), axis=1).sum())
+    rec.collisions, rec.contact_s = int(state.engine.collisions), float(state.engine.contact_s)
+    rec.checkpoints_reached = int(state.passed)
+    rec.final_distance_m = float(np.linalg.norm(rec.poses[-1, :2] - np.asarray(run.world.goal_at(rec.times[-1]))))
+    rec.reached = rec.arrived and rec.collisions == 0
+    rec.final_state = state.control
+    return rec
+
+
+def recover(run: Run, pose, t: float, config: ScenarioConfig):
+    """The pymunk runner's recovery (:func:`evaluation.scenario.watch`) for a run whose monitor fired at ``t`` with
+    the robot at ``pose``: its checkpoints after the new plan, or None (it ends trapped: no recovery left, or no
+    route round what it sensed)."""
+    if not config.recover or run.recoveries >= config.max_recoveries:
+        return None
+    run.recoveries += 1
+    body = run.body
+    known, added = with_sensed(run.known, *sensed_points(run.sensed, body), config.sensed_radius,
+                               body.sensors.noise, body.sensors.resolution_m)
+    current = replan_from(run.plan, known, np.asarray(pose[:2], float), t, body.robot, config)
+    if current is None:
+        run.trapped_why = "trapped (no route around the sensed obstacle)"
+        return None
+    run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added))
+    run.plan, run.known, run.replans = current, known, run.replans + 1
+    return current.checkpoints
+
+
+def setup_for(body, func, static, config: ScenarioConfig) -> Setup:
+    """The :class:`Setup` of a batch driven by ``body`` (a controller: robot and sensors) with the step
+    ``func``/``static``."""
+    robot = body.robot
+    n = robot.substeps(robot.avoid_period)
+    rule = jaxmonitor.MonitorRule(config.trap_after, config.trap_progress, config.trap_ground, config.trap_loop)
+    return Setup(params=robot, sensors=body.sensors, n=n, k=robot.noise_shape(robot.avoid_period)[0], config=config,
+                 rule=rule, func=func, static=static)
+
+
+def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int = CHUNK_TICKS,
+              between=lambda: None) -> None:
+    """Drive ``runs`` (started by :func:`start_run`) to their ends in one batch: ``controls[i]`` the controller's
+    fresh state and ``arrays[i]`` its step's array keywords (:func:`~evaluation.scenario.split_step`) for run ``i``.
+    ``on_done(i, record)`` receives each run's :class:`RunRecord` as it ends (at the end of the chunk it ended in);
+    ``between()`` is called between chunks (Ctrl-C). The imperative shell of the module docstring."""
+    config = setup.config
+    b = len(runs)
+    blk = min(BLOCK, b)
+    slots = runs + [runs[0]] * (-b % blk)  # padding to whole blocks: copies of run 0 that never run
+    controls, arrays = controls + [controls[0]] * (len(slots) - b), arrays + [arrays[0]] * (len(slots) - b)
+    ids = np.where(np.arange(len(slots)) < b, np.arange(len(slots)), -1)
+    may = config.recover and config.max_recoveries > 0
+    extent = np.max([r.world.size for r in runs], axis=0)
+    grid = jaxmonitor.grid_size(extent, config.trap_ground)
+    cps = [np.asarray(r.plan.checkpoints, np.float32) for r in slots]
+    room = ROOM if may else 0
+    routes = Route(scene=_scenes([r.world for r in slots]), sight=_scenes([_sight_world(r.known) for r in slots], room),
+                   checkpoints=_padded(cps, _bucket(max(len(c) for c in cps) + (SLOTS if may else 0))),
+                   last=np.array([len(c) - 1 for c in cps], np.int32),
+                   ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may))
+    starts = jnp.asarray(np.stack([r.world.start for r in slots]), jnp.float32)
+    eng = jax.vmap(partial(engine.reset, params=setup.params))(starts, jax.tree.map(jnp.asarray, routes.scene))
+    stack = partial(jax.tree.map, lambda *a: jnp.stack(a))
+    zeros = partial(jnp.zeros, len(slots))
+    state = RunState(engine=eng, control=stack(*controls),
+                     key=jax.vmap(jax.random.PRNGKey)(jnp.array([r.seed for r in slots])), tick=zeros(jnp.int32),
+                     index=zeros(jnp.int32), target_id=zeros(jnp.int32), settled=zeros(bool),
+                     since=zeros(jnp.float32), turn_until=zeros(jnp.float32),
+                     monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (len(slots),) + a.shape), jaxmonitor.init(grid)),
+                     status=jnp.asarray(np.where(ids >= 0, RUNNING, TIMEOUT), jnp.int32), passed=zeros(jnp.int32),
+                     stop_t=zeros(jnp.float32))
+    arrays = stack(*arrays)
+    open_ = ids >= 0
+    while open_.any():
+        state, outs = advance(setup, blk, routes, state, arrays, chunk_ticks)
+        outs = jax.tree.map(np.asarray, outs)
+        status = np.asarray(state.status)
+        for k in np.flatnonzero(open_):
+            _taken(slots[k], outs, k, setup)
+        waiting = np.flatnonzero(open_ & (status == WAITING))
+        if len(waiting):
+            routes, state = _recoveries(slots, waiting, routes, state, setup)
+            status = np.asarray(state.status)
+        ended = np.flatnonzero(open_ & (status >= ARRIVED))
+        if len(ended):
+            host = jax.tree.map(np.array, state)  # a copy: the next chunk reuses the state's buffers
+        for k in ended:
+            one = jax.tree.map(lambda a: a[k], host)
+            on_done(int(ids[k]), finish_run(slots[k], int(status[k]), one))
+            open_[k] = False
+        if len(ended):  # the open runs first, so that whole blocks of ended ones are skipped
+            order = np.argsort(~open_, kind="stable")
+            routes, state, arrays = jax.tree.map(lambda a: a[order], (routes, state, arrays))
+            slots, ids, open_ = [slots[k] for k in order], ids[order], open_[order]
+        between()
+
+
+def _recoveries(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
+    """Recovery for every run in ``waiting``: new plans and maps into ``routes``, the runs' states restarted on them
+    (index 0, a new target, the monitor reset, a turn to face the route) — or ended trapped."""
+    config = setup.config
+    poses = np.asarray(state.engine.robot.pose)
+    ks = np.asarray(state.engine.k)
+    new = {}
+    for i in waiting:
+        t = float(np.float32(ks[i]) * np.float32(setup.params.dt))
+        new[int(i)] = (t, recover(runs[i], poses[i], t, config))
+    cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
+    slots = max(routes.checkpoints.shape[1], _bucket(max(len(c) for c in cps)))
+    routes = routes._replace(sight=_grown(routes.sight, runs, [i for i, (_, c) in new.items() if c is not None]),
+                             checkpoints=_padded(cps, slots), last=np.array([len(c) - 1 for c in cps], np.int32))
+    status = np.asarray(state.status).copy()
+    index, target_id, turn_until = (np.asarray(a).copy() for a in (state.index, state.target_id, state.turn_until))
+    ticks = np.asarray(state.tick)
+    rows = []
+    for i, (t, checkpoints) in new.items():
+        if checkpoints is None:
+            status[i] = TRAPPED
+            continue
+        rows.append((i, t))
+        index[i], target_id[i], turn_until[i] = 0, target_id[i] + 1, t + config.turn_s
+        status[i] = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
+    when, at = np.zeros(len(runs), bool), np.zeros(len(runs), np.float32)
+    for i, t in rows:
+        when[i], at[i] = True, t
+    monitor = jaxmonitor.reset(state.monitor, jnp.asarray(at), jnp.asarray(when))
+    may = routes.may_recover.copy()
+    for r_i, r in enumerate(runs):
+        may[r_i] = config.recover and r.recoveries < config.max_recoveries
+    routes = routes._replace(may_recover=may)
+    state = state._replace(status=jnp.asarray(status), index=jnp.asarray(index), target_id=jnp.asarray(target_id),
+                           turn_until=jnp.asarray(turn_until, jnp.float32), monitor=monitor)
+    return routes, state
+
+
+def _grown(sight: Scene, runs: list, changed: list) -> Scene:
+    """The batch's ``sight`` with the maps of the ``changed`` runs made again; every run's again, to a larger
+    shape, when one of them no longer fits."""
+    shape = (sight.cap_a.shape[1], sight.poly_v.shape[1], sight.poly_v.shape[2])
+    try:
+        rows = {i: scene_of(_sight_world(runs[i].known), shape) for i in changed}
+    except ValueError:  # recovery's discs outgrew the padding
+        return _scenes([_sight_world(r.known) for r in runs], ROOM)
+    leaves = [np.array(a) for a in sight]
+    for i, scene in rows.items():
+        for leaf, row in zip(leaves, scene):
+            leaf[i] = row
+    return Scene(*leaves)
+
+
+def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ticks: int = CHUNK_TICKS) -> list[dict]:
+    """The records of a comparison's jobs (:class:`evaluation.compare.Job`) on the JAX engine, in the jobs' order
+    (:func:`evaluation.batch.kept`'s ``run``): one batch per architecture (and map, robot, learning rule, config)
+    over all its worlds and seeds. ``done``: ``{index: record}`` already made, not run again; ``on_done(index,
+    record)`` as each run ends. A job that cannot start — its world has movers, events or a moving goal, no route,
+    a start the robot does not fit — is a failed record (:func:`evaluation.compare.failed_record`), as on pymunk."""
+    from ekm import interrupts
+    from evaluation.compare import _world, failed_record, failure, job_driver, job_record, world_family
+    from evaluation.scenario import driven
+
+    records: list = [None] * len(job_list)
+    for i, record in (done or {}).items():
+        records[i] = record
+
+    def finish(i: int, record: dict) -> None:
+        records[i] = record
+        if on_done:
+            on_done(i, record)
+
+    groups: dict = {}
+    for i, job in enumerate(job_list):
+        if records[i] is None:
+            groups.setdefault((job.architecture, job.map_path, job.robot, job.learn, job.config, job.added), []).append(i)
+    for members in groups.values():
+        runs, drivers, batch = [], [], []
+        for i in members:
+            job, world = job_list[i], None
+            try:
+                d = job_driver(job)
+                world = _world(job.world)
+                runs.append(start_run(world, d.controller, job.seed, job.config, d.controller.spec))
+            except Exception as exc:
+                finish(i, failed_record(job, failure(job, exc), world.name if world is not None else None,
+                                        world_family(world) if world is not None else None))
+                continue
+            drivers.append(d)
+            batch.append(i)
+        if not batch:
+            continue
+        parts = [split_step(d.controller.step) for d in drivers]
+        if parts[0] is None or any(p is None or p[0] is not parts[0][0] or p[2] != parts[0][2] for p in parts):
+            for i in batch:
+                finish(i, failed_record(job_list[i], f"{job_list[i].world}: engine jax: the architecture's step is not "
+                                        f"one jitted function with its maps as keywords; use the pymunk engine"))
+            continue
+        setup = setup_for(drivers[0].controller, parts[0][0], parts[0][2], job_list[batch[0]].config)
+
+        def ended(k: int, rec: RunRecord) -> None:
+            finish(batch[k], job_record(job_list[batch[k]], driven(rec, drivers[k])))
+
+        run_batch(runs, [d.controller.init() for d in drivers], [p[1] for p in parts], setup, ended, chunk_ticks,
+                  between=interrupts.check)
+    return records
+
+
+def run_scenarios(runs, controller, config: ScenarioConfig = ScenarioConfig(),
+                  chunk_ticks: int = CHUNK_TICKS) -> list[RunRecord]:
+    """:func:`evaluation.scenario.run_scenario` for many runs of one ``controller`` at once: ``runs`` a list of
+    ``(world, seed)``; their :class:`RunRecord` in that order (raises what :func:`start_run` raises for a run that
+    cannot start). The controller's step must be one jitted function with keywords
+    (:func:`~evaluation.scenario.split_step`), as every shipped architecture's is."""
+    from ekm.errors import InputError
+
+    parts = split_step(controller.step)
+    if parts is None:
+        raise InputError(f"engine jax: the step of {controller.name} is not a partial of one function with keywords")
+    func, arrays, static = parts
+    started = [start_run(world, controller, seed, config, controller.spec) for world, seed in runs]
+    records: list = [None] * len(started)
+    run_batch(started, [controller.init()] * len(started), [arrays] * len(started),
+              setup_for(controller, func, static, config), records.__setitem__, chunk_ticks)
+    return records

@@ -1,0 +1,120 @@
+"""The scenario runner on the JAX engine (evaluation.jaxrun): a scripted controller's runs, with answers worked out
+by hand, the same records as the pymunk runner's, and the trap monitor's recovery between chunks."""
+
+import math
+from functools import partial
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+from evaluation import jaxrun
+from evaluation.scenario import ScenarioConfig, run_scenario
+from robots.controllers.base import Controller
+from robots.params import KHEPERA
+from robots.worldfile import parse_world
+from robots.worldnames import load_world
+
+
+@jax.jit
+def _go(state, obs, *, gain):
+    """Steer at the checkpoint (4 × its bearing, rad/s), forward at min(c*, gain × its distance) times the cosine
+    of the bearing; zero within 5 mm of it."""
+    alpha, d = obs.target[0], obs.target[1]
+    v = jnp.minimum(KHEPERA.max_wheel_speed, gain * d) * jnp.maximum(jnp.cos(alpha), 0.0)
+    half = 0.5 * KHEPERA.wheel_base * 4.0 * alpha
+    wheels = jnp.stack([v - half, v + half])
+    wheels = wheels * jnp.minimum(1.0, KHEPERA.max_wheel_speed / jnp.maximum(jnp.max(jnp.abs(wheels)), 1e-9))
+    return state, jnp.where(d < 0.005, 0.0, wheels)
+
+
+GO = Controller(name="go", spec="go", sensors=KHEPERA.long_range, init=lambda: jnp.zeros(()),
+                step=partial(_go, gain=2.0))
+
+#: A wall across the way, unforeseen: the goal is straight behind it; 9.5 cm gaps above and below.
+DEAD_END = parse_world({"name": "dead-end", "size": [1.0, 0.5], "start": [0.3, 0.275, 0.0], "goal": [0.9, 0.275],
+                        "unforeseen": [{"type": "box", "center": [0.61, 0.25], "size": [0.02, 0.3]}]}, "dead-end.json")
+
+
+RUNS = [(load_world("open-arena"), 0), (load_world("open-arena"), 1), (DEAD_END, 0)]
+
+
+@pytest.fixture(scope="module")
+def batch():
+    """One batch, one compilation: open-arena seeds 0 and 1, and the dead end (seed 0) — in blocks of 2, so that the
+    batch is padded to whole blocks and its open runs are moved to the front as others end."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr(jaxrun, "BLOCK", 2)
+    try:
+        return jaxrun.run_scenarios(RUNS, GO, ScenarioConfig(time_limit=60.0))
+    finally:
+        mp.undo()
+
+
+def test_a_scripted_controller_reaches_the_goal_of_open_arena_in_the_time_hand_arithmetic_gives(batch):
+    # From (0.5, 0.5) to (0.8, 0.8): D = 0.4243 m, the goal 45° to the left. At least D / (1.1 c*) = 2.41 s (top
+    # speed, every slip draw at +10 %); at most a 0.5 s turn, then (D - 0.08) / (0.9 c*) = 2.39 s at top speed,
+    # then the approach at 2 d from d = 0.08 to 0.005 m, 0.5 ln(16) / 0.9 = 1.54 s: 4.43 s. The path: at least the
+    # straight line less the 5 mm it may stop short, at most 10 % longer (the turn, the slip).
+    d = math.hypot(0.3, 0.3)
+    for rec in batch[:2]:
+        assert rec.reached and rec.ended == "stopped at the goal" and rec.collisions == 0
+        assert 2.41 <= rec.time_s <= 4.43
+        assert d - 0.005 <= rec.path_m <= 1.1 * d and rec.final_distance_m < 0.005  # it stops within 5 mm
+        assert rec.checkpoints_reached == 1 and rec.replans == 0 and rec.time_limit_s == 60.0
+    assert batch[0].path_m != batch[1].path_m  # other seeds, other noise
+
+
+def test_the_pymunk_runner_gives_the_same_answer_and_the_same_record_keys(batch):
+    rec = run_scenario(load_world("open-arena"), GO, seed=0, config=ScenarioConfig(time_limit=60.0))
+    assert rec.reached and 2.41 <= rec.time_s <= 4.43
+    ours, theirs = batch[0].outcome(), rec.outcome()
+    assert list(ours) == list(theirs)
+    assert [k for k, v in ours.items() if v is None] == [k for k, v in theirs.items() if v is None]
+
+
+def test_a_dead_end_traps_the_robot_at_the_time_the_monitor_s_rule_gives_and_recovery_replans(batch):
+    # The robot drives at c* (±10 %) from x = 0.3 to the wall's face less its radius, 0.6 - 0.025 = 0.575: there
+    # after 0.275 / 0.176 = 1.56 s to 0.275 / 0.144 = 1.91 s, its last progress (1.2 cm closer in its last tick);
+    # pressed against the wall it comes no closer and enters no new 5 cm square. Trapped 20 s later, at the end of
+    # the first tick (multiples of 0.128 s) at or after that: between 21.56 and 22.04 s.
+    rec = batch[2]
+    recovery = next(p for p in rec.plans if p.reason == "recovery")
+    assert 21.56 <= recovery.t <= 22.04
+    assert rec.recoveries >= 1 and rec.replans >= 1 and len(recovery.added) > 0
+    assert np.all(np.abs(recovery.added[:, 0] - 0.6) < 0.03)  # what the IR saw: the wall's face
+    x_at_trap = rec.poses[np.searchsorted(rec.times, recovery.t) - 1, 0]
+    assert abs(x_at_trap - 0.575) < 0.002
+
+
+@pytest.mark.slow  # another compilation (recovery off is part of the program): 5-20 s
+def test_without_recovery_the_dead_end_ends_the_run_trapped():
+    rec, = jaxrun.run_scenarios([(DEAD_END, 0)], GO, ScenarioConfig(time_limit=60.0, recover=False))
+    assert rec.trapped and rec.ended == "trapped" and not rec.reached and rec.replans == 0
+    assert 21.56 <= rec.time_s <= 22.04  # the tick the monitor fired ends the run
+
+
+@pytest.mark.slow  # another compilation (a batch of one): 5-20 s
+def test_a_run_is_the_same_whatever_batch_it_is_in(batch):
+    alone = jaxrun.run_scenarios([RUNS[1]], GO, ScenarioConfig(time_limit=60.0))[0]
+    assert (alone.time_s, alone.path_m, alone.collisions) == (batch[1].time_s, batch[1].path_m, batch[1].collisions)
+    assert np.array_equal(alone.poses, batch[1].poses)
+
+
+@pytest.mark.slow  # 60 runs on each engine, three batches to compile: 2-5 min
+def test_the_two_engines_agree_on_success_in_the_named_worlds_without_movers():
+    # docs/guide/jaxworld.md's agreement table, seeds 0-3: per world and architecture the two success rates' 95 %
+    # Wilson intervals overlap (at 4 runs they exclude each other only for 0 against 4 reached)
+    import ekm
+    from evaluation.compare import wilson
+
+    worlds = "open-arena,three-rooms,three-rooms-static,concave-obstacle,extended-obstacle"
+    rates = {engine: {(r["world"], r["architecture"]): round(r["success_rate"] * r["trials"])
+                      for r in ekm.compare(worlds, "fusion,fields,samba", trials=4, engine=engine, workers=1).rows}
+             for engine in ("pymunk", "jax")}
+    assert len(rates["jax"]) == 15 and rates["jax"].keys() == rates["pymunk"].keys()
+    for cell, k in rates["pymunk"].items():
+        (lo, hi), (lo2, hi2) = wilson(k, 4), wilson(rates["jax"][cell], 4)
+        assert lo <= hi2 and lo2 <= hi, (cell, k, rates["jax"][cell])
+    assert rates["jax"][("open-arena", "fields")] == rates["jax"][("three-rooms", "samba")] == 4
