@@ -144,7 +144,6 @@ def main(argv=None) -> int:
         return 1e6 * best_time(fn, args.repeat) / ts
 
     full = us(lambda: train_chunk(s0, keys, 0.0, length=args.steps, cfg=cfg, tcfg=tcfg))
-    rows = [("train_chunk as shipped (every piece)", full)]
     # Cumulative: start from nothing, add one piece at a time.
     have: list[str] = []
     cum = [("none of the pieces (scan, vmap, carry, targets)",
