@@ -172,13 +172,15 @@ def _traced(trace: Trace, e, rule: Adaptation) -> Trace:
 
 def excess_error(trace: Trace, noise: Noise, rule: Adaptation):
     """The recent error beyond the noise: √(max(ē² − n̄², 0)), ē of :func:`recent_error` and n̄ the running
-    mean of :class:`Noise` (corrected alike for having started at 0); ē itself before the first pair. Were
+    mean of :class:`Noise` (corrected alike for having started at 0); 0 before the first pair — the noise not
+    yet measured, nothing is known to be beyond it (a single tick of the slippery floor errs by up to 0.12,
+    which ē alone would take for a changed robot and learn at the highest rates). Were
     error and noise independent and their norms' means their root mean squares, this would be the error of
     the map's model alone (a bias b and noise n: E|b + n|² = |b|² + E|n|²); it is that approximately."""
     e = recent_error(trace, rule)
     weight = 1.0 - jnp.power(1.0 - 1.0 / rule.memory, noise.pairs.astype(jnp.float32))
     n = jnp.where(noise.pairs > 0, noise.level / jnp.maximum(weight, 1e-12), 0.0)
-    return jnp.sqrt(jnp.maximum(e * e - n * n, 0.0))
+    return jnp.where(noise.pairs > 0, jnp.sqrt(jnp.maximum(e * e - n * n, 0.0)), 0.0)
 
 
 def recent_error(trace: Trace, rule: Adaptation):
