@@ -19,6 +19,12 @@ whose training has ended. :class:`Adaptation` says which:
   robot raises the error, and the wider, faster updates move the whole map towards the new robot
   (a wheel's gain changes every neuron's M alike) until the error falls back to the noise floor.
 
+  A map learning while it drives (:func:`adapt_beyond_noise`, :mod:`robots.controllers.learner`) puts in
+  place of ē the error beyond the robot's noise, √(max(ē² − n̄², 0)), n̄ estimated from consecutive ticks of
+  one command (:class:`Noise`): a robot that slips more than the map's (the slippery floor: ē ≈ 0.05–0.07
+  against the Khepera's 0.03, all of it slip) errs by its noise alone and learns at the resting rates, where
+  a changed one (a weak motor: ē ≈ 0.08, n̄ ≈ 0.03) still learns fast.
+
 The defaults were chosen on the arena fine-tuning of the named robots with tuning seeds
 (``docs/reproduce/adaptation.md``, which gives the measurements and the command that makes them).
 """
@@ -93,6 +99,26 @@ def fresh_trace() -> Trace:
     return Trace(jnp.zeros((), jnp.float32), jnp.zeros((), jnp.int32))
 
 
+class Noise(NamedTuple):
+    """What a map learning while it drives remembers of the robot's noise (:func:`adapt_beyond_noise`): the
+    running mean ``level`` of |e_t − e_{t−1}| / √2 over ``pairs`` of consecutive updates made with the same
+    command, e being the relative prediction error vector (c − M_k ṽ) / c*; the ``last`` update's e; its
+    ``updates``. A changed robot (a wheel's gain, its wheel base) errs alike on two consecutive ticks of the
+    same command, and the difference cancels it; slip, drawn afresh every tick, does not cancel — the
+    difference of two independent draws is √2 times one — so ``level`` estimates the part of the mean error
+    that is noise."""
+
+    level: jax.Array
+    pairs: jax.Array
+    last: jax.Array
+    updates: jax.Array
+
+
+def fresh_noise() -> Noise:
+    return Noise(jnp.zeros((), jnp.float32), jnp.zeros((), jnp.int32), jnp.zeros(2, jnp.float32),
+                 jnp.zeros((), jnp.int32))
+
+
 def prediction(ekm, v, k, cfg: EKMConfig):
     """The command ``(2,)`` neuron ``k``'s model gives for displacement ``v``: M_k ṽ (Eq. 4.1; direct: c_k)."""
     from ekm import indirect
@@ -114,13 +140,47 @@ def rates(rule: Adaptation, error):
 def adapt(ekm, v, c, trace: Trace, rule: Adaptation, cfg: EKMConfig):
     """One update of a trained map from the executed command ``c`` ``(2,)`` (m/s) and the displacement ``v`` =
     (α, d) it produced (ch. 4.3 steps 4–6 with :func:`rates`); returns ``(ekm, trace)``."""
+    k, ev = _error(ekm, v, c, cfg)
+    trace = _traced(trace, jnp.linalg.norm(ev), rule)
+    eta, sigma = rates(rule, recent_error(trace, rule))
+    return maps.learn(ekm, v, c, eta, neighbourhood(cfg, k, sigma), cfg), trace
+
+
+def adapt_beyond_noise(ekm, v, c, trace: Trace, noise: "Noise", paired, rule: Adaptation, cfg: EKMConfig):
+    """:func:`adapt` with the rates driven by the error beyond the robot's noise (:func:`excess_error`);
+    ``paired``: the update before this one was made on the tick just before, with the same command, so that
+    the difference of their error vectors is noise (see :class:`Noise`). Returns ``(ekm, trace, noise)``."""
+    k, ev = _error(ekm, v, c, cfg)
+    trace = _traced(trace, jnp.linalg.norm(ev), rule)
+    paired = jnp.asarray(paired) & (noise.updates > 0)
+    d = jnp.linalg.norm(ev - noise.last) / jnp.sqrt(2.0)
+    noise = Noise(jnp.where(paired, noise.level + (d - noise.level) / rule.memory, noise.level).astype(jnp.float32),
+                  noise.pairs + paired.astype(jnp.int32), ev.astype(jnp.float32), noise.updates + 1)
+    eta, sigma = rates(rule, excess_error(trace, noise, rule))
+    return maps.learn(ekm, v, c, eta, neighbourhood(cfg, k, sigma), cfg), trace, noise
+
+
+def _error(ekm, v, c, cfg: EKMConfig):
+    """The winner ``k`` for ``v`` and the relative prediction error vector (c − M_k ṽ) / c* of its model."""
     k = winner(ekm.w, v, cfg)
-    e = jnp.linalg.norm(c - prediction(ekm, v, k, cfg)) / cfg.c_max
-    error = trace.error + (e - trace.error) / rule.memory
-    updates = trace.updates + 1
-    eta, sigma = rates(rule, recent_error(Trace(error, updates), rule))
-    learned = maps.learn(ekm, v, c, eta, neighbourhood(cfg, k, sigma), cfg)
-    return learned, Trace(error.astype(jnp.float32), updates)
+    return k, (c - prediction(ekm, v, k, cfg)) / cfg.c_max
+
+
+def _traced(trace: Trace, e, rule: Adaptation) -> Trace:
+    return Trace((trace.error + (e - trace.error) / rule.memory).astype(jnp.float32), trace.updates + 1)
+
+
+def excess_error(trace: Trace, noise: Noise, rule: Adaptation):
+    """The recent error beyond the noise: √(max(ē² − n̄², 0)), ē of :func:`recent_error` and n̄ the running
+    mean of :class:`Noise` (corrected alike for having started at 0); 0 before the first pair — the noise not
+    yet measured, nothing is known to be beyond it (a single tick of the slippery floor errs by up to 0.12,
+    which ē alone would take for a changed robot and learn at the highest rates). Were
+    error and noise independent and their norms' means their root mean squares, this would be the error of
+    the map's model alone (a bias b and noise n: E|b + n|² = |b|² + E|n|²); it is that approximately."""
+    e = recent_error(trace, rule)
+    weight = 1.0 - jnp.power(1.0 - 1.0 / rule.memory, noise.pairs.astype(jnp.float32))
+    n = jnp.where(noise.pairs > 0, noise.level / jnp.maximum(weight, 1e-12), 0.0)
+    return jnp.where(noise.pairs > 0, jnp.sqrt(jnp.maximum(e * e - n * n, 0.0)), 0.0)
 
 
 def recent_error(trace: Trace, rule: Adaptation):

@@ -16,7 +16,9 @@ c*, rounded to the speed unit): one step of :func:`ekm.learning.adapt` (Eq. 4.7â
 when its command was the one before it, within ``steady`` m/s on each wheel (the wheels were at speed, not
 catching up with a new command through the motor lag), and the IR saw nothing nearer than ``clear`` m at its
 start and its end (nothing touched or pushed the robot); a tick on which the runner took the wheels (the turn
-of a recovery) teaches nothing.
+of a recovery) teaches nothing. The error rule's rates follow the error beyond the robot's noise
+(:func:`ekm.learning.adapt_beyond_noise`): two consecutive ticks that teach with the same command differ in
+their prediction errors by the slip alone.
 
 With rates 0 the map never changes and the run is the frozen run, bit for bit (the learner's updates are
 selected away, not added as zeros).
@@ -33,7 +35,7 @@ import jax.numpy as jnp
 
 from ekm.config import EKMConfig
 from ekm.errors import InputError
-from ekm.learning import Adaptation, Trace, adapt, fresh_trace
+from ekm.learning import Adaptation, Noise, Trace, adapt_beyond_noise, fresh_noise, fresh_trace
 from robots.controllers.base import Controller, Observation
 from robots.kinematics import quantize_command, repeated
 from robots.params import RobotParams
@@ -54,23 +56,27 @@ class LearnParams:
 
 class Tick(NamedTuple):
     """The last tick, as the learner remembers it: the pose it started from ``(3,)``, the command sent ``(2,)``,
-    whether that command was the one before it (``steady``) and the IR saw nothing near (``clear``), its time."""
+    whether that command was the one before it (``steady``) and the IR saw nothing near (``clear``), its time,
+    whether the command was exactly the one before it (``same``) and the tick before it taught (``taught``)."""
 
     pose: jax.Array
     command: jax.Array
     steady: jax.Array
     clear: jax.Array
     t: jax.Array
+    same: jax.Array
+    taught: jax.Array
 
 
 class Learner(NamedTuple):
     """A learning controller's state: the controller's own ``inner`` state, the ``ekm`` that drives, its
-    :class:`~ekm.learning.Trace` and the last :class:`Tick`."""
+    :class:`~ekm.learning.Trace`, the last :class:`Tick` and the robot's :class:`~ekm.learning.Noise`."""
 
     inner: Any
     ekm: Any
     trace: Trace
     last: Tick
+    noise: Noise
 
 
 def learning(controller: Controller, ekm, cfg: EKMConfig, params: LearnParams = LearnParams()) -> Controller:
@@ -95,8 +101,8 @@ def learning(controller: Controller, ekm, cfg: EKMConfig, params: LearnParams = 
 
 def _init(inner_init, ekm) -> Learner:
     last = Tick(jnp.zeros(3, jnp.float32), jnp.zeros(2, jnp.float32), jnp.asarray(False), jnp.asarray(False),
-                jnp.asarray(-jnp.inf, jnp.float32))
-    return Learner(inner_init(), ekm, fresh_trace(), last)
+                jnp.asarray(-jnp.inf, jnp.float32), jnp.asarray(False), jnp.asarray(False))
+    return Learner(inner_init(), ekm, fresh_trace(), last, fresh_noise())
 
 
 def _is_arrays(value) -> bool:
@@ -118,15 +124,20 @@ def learning_step(state: Learner, obs: Observation, *, arrays, func, static, cfg
     clear = ~jnp.any(jnp.asarray(obs.ir) < params.clear)
     teaches = followed & last.steady & last.clear & clear & (not params.rule.frozen)
     v = repeated(last.pose, pose, ticks, jnp)  # the tick's motion over the map's period
-    learned, trace = adapt(state.ekm, v, last.command, state.trace, params.rule, cfg)
+    # the update before this one was the tick before, with this command: their errors differ by noise alone
+    paired = last.taught & last.same
+    learned, trace, noise = adapt_beyond_noise(state.ekm, v, last.command, state.trace, state.noise, paired,
+                                               params.rule, cfg)
     ekm = jax.tree.map(lambda new, old: jnp.where(teaches, new, old), learned, state.ekm)
     trace = jax.tree.map(lambda new, old: jnp.where(teaches, new, old), trace, state.trace)
+    noise = jax.tree.map(lambda new, old: jnp.where(teaches, new, old), noise, state.noise)
 
     inner, command = func(state.inner, obs, ekm=ekm, **arrays, **dict(static))
 
     sent = quantize_command(jnp.asarray(command, jnp.float32), robot, jnp)
     steady = followed & jnp.all(jnp.abs(sent - last.command) <= params.steady + 1e-6)
-    return Learner(inner, ekm, trace, Tick(pose, sent, steady, clear, t)), command
+    same = followed & jnp.all(sent == last.command)
+    return Learner(inner, ekm, trace, Tick(pose, sent, steady, clear, t, same, teaches), noise), command
 
 
 def parse_learning(text) -> LearnParams:
