@@ -42,7 +42,9 @@ fields' equations and adds four things, each with its reason:
 1. **remembered obstacles** (:mod:`robots.controllers.memory`): the IR hits are kept in the world frame
    and fed to the obstacle field every tick from wherever the robot is — the obstacle fields
    "remembered across steps and carried with the robot's odometry"; only those nearer than the target
-   count (an obstacle beyond the target cannot block the way to it);
+   count (an obstacle beyond the target cannot block the way to it); a ray forgets a remembered point only when
+   it passes within ``see_through`` (5 mm, the points' radius) of it, not within the 1 cm of ``merge`` that forgot
+   a wall's end beside the ray that just missed it, and the robot drove into the end (issue 35, ``niches:0``);
 2. **obstacles where they are** (:func:`body_field`): the field of a remembered point is centred on
    the point itself, not on its localisation winner — the lattice's ~24° rows would otherwise shift a
    doorway's edges into the doorway — and its angular width is the angle the robot's body subtends at
@@ -111,6 +113,9 @@ class FieldParams:
     memory_points: int = field(default=256, metadata={"help": "form=extended: obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "form=extended: m within which a hit refreshes a "
                                                          "remembered point"})
+    see_through: float = field(default=0.005, metadata={
+        "help": "form=extended: m from a ray within which a remembered point it passes, short of its hit, is forgotten "
+                "(the points' radius, merge / 2; it was merge, which forgot a wall's end beside a ray that missed it)"})
     clearance: float = field(default=0.01, metadata={"help": "form=extended: m kept between the body and a "
                                                              "remembered obstacle"})
     commit: bool = field(default=True, metadata={"help": "form=extended: keep to one side of an obstacle until "
@@ -136,7 +141,8 @@ class FieldParams:
                 "sensed gap across the way to the target leaves the body (0: fixed)"})
 
     def __post_init__(self):
-        for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge"):
+        for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge",
+                     "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
         if min(self.clearance, self.guard_s, self.mover_near, self.gap_share, self.escape_s, self.mover_ahead_s) < 0:
@@ -293,7 +299,7 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
         else:
             ir = obs.ir
         memory = mem.update(state.memory, obs.pose, ir, angles, obs.t, radius=radius, range_m=range_m,
-                            merge=p.merge, forget_after=p.memory_s)
+                            merge=p.merge, forget_after=p.memory_s, through=p.see_through)
         state = state._replace(memory=memory)
         u_obs, valid = mem.egocentric(memory, obs.pose, radius=radius)
         grown = jnp.zeros_like(u_obs[:, :1])  # m each obstacle adds to the clearance: 0 for a point

@@ -39,24 +39,29 @@ def empty(size: int) -> Memory:
 
 
 def update(memory: Memory, pose, readings, angles, t, *, radius: float, range_m: float, merge: float,
-           forget_after: float) -> Memory:
+           forget_after: float, through: float | None = None) -> Memory:
     """The memory after one tick's ``readings`` ``(m,)`` (sensor directions ``angles``, robot frame) at ``pose``.
 
-    First forget what the rays see through and what is older than ``forget_after`` seconds, then add the
-    hits (see the module docstring).
+    First forget what the rays see through (``through``: see :func:`forget`) and what is older than
+    ``forget_after`` seconds, then add the hits (see the module docstring).
     """
     seen = forget(memory.points, memory.seen, pose, readings, angles, t, radius=radius, range_m=range_m, merge=merge,
-                  forget_after=forget_after)
+                  forget_after=forget_after, through=through)
     hits, valid = hit_points(pose, readings, angles, radius, jnp)
     add = _add_hits if hits.shape[0] <= memory.points.shape[0] else _add_hits_in_turn
     pts, seen, slot = add(memory.points, seen, memory.slot, hits, valid, t, merge)
     return Memory(pts, seen, slot)
 
 
-def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: float, merge: float, forget_after: float):
+def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: float, merge: float, forget_after: float,
+           through: float | None = None):
     """``seen`` ``(K,)`` after forgetting the points ``pts`` ``(K, 2)`` that a ray of this tick passes through, short
-    of what it hit (farther than ``merge`` before it, within ``merge`` of the ray), and those older than
-    ``forget_after`` s: −inf for them (see :func:`update`)."""
+    of what it hit (farther than ``merge`` before it, within ``through`` of the ray; ``merge`` when None), and
+    those older than ``forget_after`` s: −inf for them (see :func:`update`).
+
+    A ray passing *beside* a point proves free only the ray's own line: at the end of a wall (or any convex
+    corner) a ray that just misses the end passes within a few millimetres of the point the IR saw on the end, and
+    with a wide ``through`` it forgets the end while the wall is still there."""
     phi = pose[2] + angles
     cos, sin = jnp.cos(phi), jnp.sin(phi)  # (m,) each ray's direction; it starts on the rim
     ox, oy = pose[0] + radius * cos, pose[1] + radius * sin
@@ -67,7 +72,7 @@ def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: floa
     along = rx * cos[None, :] + ry * sin[None, :]
     across = jnp.abs(rx * sin[None, :] - ry * cos[None, :])
     free_to = jnp.where(jnp.isfinite(readings), readings, range_m) - merge
-    through = (along >= 0) & (along < free_to[None, :]) & (across < merge)
+    through = (along >= 0) & (along < free_to[None, :]) & (across < (merge if through is None else through))
     return jnp.where(jnp.any(through, axis=1) | (t - seen > forget_after), -jnp.inf, seen)
 
 

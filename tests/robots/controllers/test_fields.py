@@ -201,3 +201,20 @@ def test_the_fields_step_straight_out_of_a_movers_way(signed_map):
     np.testing.assert_allclose(np.asarray(ctl.step(ctl.init(), obs)[1]), [0.06, 0.06], atol=1e-6)
     off = fields.build(fields.FieldParams(escape_s=0.0), ekm, cfg)
     assert not np.allclose(np.asarray(off.step(off.init(), obs)[1]), [0.06, 0.06], atol=1e-3)
+
+
+@pytest.mark.parametrize("see_through, remembered", [(None, 1), (0.01, 0)])
+def test_the_fields_keep_a_wall_end_a_ray_passes_8_mm_beside(signed_map, see_through, remembered):
+    """Tick 1 at (0.5, 0.5) facing +x: sensor 0 sees a wall's end 10 cm ahead, remembered at (0.625, 0.5). Tick 2
+    at (0.5, 0.508): sensor 0's ray misses it (nothing seen) and passes 8 mm beside it, 10 cm along. By default
+    (see_through 5 mm, the points' radius merge / 2) the end is kept; with the 1 cm of before it was forgotten,
+    as the ends of niche walls were beside the rays that missed them (niches:0, docs/reproduce/every-kind.md)."""
+    ekm, cfg = signed_map
+    p = FieldParams() if see_through is None else FieldParams(see_through=see_through)
+    angles = jnp.asarray(fields.sensor_angles(LONG_RANGE))
+    kw = dict(radius=0.025, range_m=LONG_RANGE.range_m)
+    seen = observation(np.r_[0.1, np.full(11, np.inf)], target=(0.0, 0.3))
+    state, _, _ = fields.fields(fields.init(p), ekm, seen, angles, p, cfg, **kw)
+    missed = observation(np.full(12, np.inf), target=(0.0, 0.3), t=0.128, pose=(0.5, 0.508, 0.0))
+    state, _, _ = fields.fields(state, ekm, missed, angles, p, cfg, **kw)
+    assert int(np.isfinite(np.asarray(state.memory.seen)).sum()) == remembered

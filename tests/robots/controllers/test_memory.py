@@ -113,3 +113,21 @@ def test_over_packed_gives_what_the_whole_memory_gives(count):
     assert float(packed[2]) == float(whole[2])  # a min: exact
     if count:
         assert float(whole[0][0]) > 0
+
+
+@pytest.mark.parametrize("beside, through, kept", [(0.008, None, False), (0.008, 0.005, True), (0.003, 0.005, False)])
+def test_a_ray_forgets_a_point_it_passes_within_through_of_and_keeps_one_beside_it(beside, through, kept):
+    """A point remembered at (0.625, 0.5); the robot at (0.5, 0.5 + beside) facing +x, nothing seen. Its ray 0
+    starts on the rim at (0.525, 0.5 + beside) and passes the point 0.1 m along it and ``beside`` across, short of
+    its free length (0.175 - 0.01 m); the rays at ±30° pass it 5.5 cm and more away. Within ``through`` (``merge``,
+    1 cm, when None) it is forgotten: 8 mm beside the ray with the old 1 cm, 3 mm beside it with 5 mm. 8 mm
+    beside it with 5 mm it is kept: the ray that just misses a wall's end proves free its own line, not the end."""
+    angles = jnp.asarray(LONG_RANGE.angles, jnp.float32)
+    kw = dict(radius=0.025, range_m=0.175, merge=0.01, forget_after=10.0)
+    ir = np.full(12, np.inf)
+    ir[0] = 0.1
+    m = memory.update(memory.empty(16), jnp.asarray([0.5, 0.5, 0.0]), jnp.asarray(ir), angles, 0.0, **kw)
+    np.testing.assert_allclose(np.asarray(m.points[0]), [0.625, 0.5], atol=1e-6)
+    after = memory.update(m, jnp.asarray([0.5, 0.5 + beside, 0.0]), jnp.full(12, jnp.inf), angles, 1.0, through=through,
+                          **kw)
+    assert int(jnp.sum(jnp.isfinite(after.seen))) == int(kept)
