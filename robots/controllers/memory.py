@@ -7,7 +7,10 @@ d_j from the body surface like a reading. The memory is a small occupancy map ke
 range rays keep one: a hit within ``merge`` of a remembered point refreshes it, any other takes the
 oldest slot of a fixed ring (so shapes stay static under ``jit``); a remembered point that a ray now
 passes through, short of what the ray hit, is forgotten — the space is free again (a moving obstacle
-has gone) — and so is every point older than ``memory_s``.
+has gone) — and so is every point older than ``memory_s``. How near the ray must pass is the caller's choice
+(:func:`forget`): a ray proves free its own line, so a wide margin forgets the end of a wall beside a ray that
+just missed it, and a narrow one is slow to clear the trail a moving obstacle leaves; given the declared movers'
+markers, the memory tells the two apart (``moving``).
 
 Pure functions over a :class:`Memory` pytree; ``jnp`` only.
 """
@@ -25,39 +28,46 @@ from robots.controllers.base import hit_points
 
 class Memory(NamedTuple):
     """``points`` ``(K, 2)`` world positions; ``seen`` ``(K,)`` when each was last sensed (−inf: empty);
-    ``slot`` the next slot of the ring to fill."""
+    ``slot`` the next slot of the ring to fill; ``moving`` ``(K,)`` whether each was last sensed on a declared
+    mover (:func:`near_movers`; only when :func:`update` is given the markers)."""
 
     points: jax.Array
     seen: jax.Array
     slot: jax.Array
+    moving: jax.Array
 
 
 def empty(size: int) -> Memory:
     """A memory of ``size`` slots, all empty."""
     return Memory(jnp.zeros((size, 2), jnp.float32), jnp.full((size,), -jnp.inf, jnp.float32),
-                  jnp.asarray(0, jnp.int32))
+                  jnp.asarray(0, jnp.int32), jnp.zeros((size,), bool))
 
 
 def update(memory: Memory, pose, readings, angles, t, *, radius: float, range_m: float, merge: float,
-           forget_after: float, through: float | None = None) -> Memory:
+           forget_after: float, through: float | None = None, markers=None) -> Memory:
     """The memory after one tick's ``readings`` ``(m,)`` (sensor directions ``angles``, robot frame) at ``pose``.
 
     First forget what the rays see through (``through``: see :func:`forget`) and what is older than
-    ``forget_after`` seconds, then add the hits (see the module docstring).
+    ``forget_after`` seconds, then add the hits (see the module docstring). With the declared movers'
+    ``markers`` ``(k, 5)`` a hit on one (:func:`near_movers`) is remembered as ``moving``: a ray forgets it
+    within ``merge`` of its line, as before ``through`` — the trail a mover leaves must clear as it goes.
     """
+    moving = memory.moving
     seen = forget(memory.points, memory.seen, pose, readings, angles, t, radius=radius, range_m=range_m, merge=merge,
-                  forget_after=forget_after, through=through)
+                  forget_after=forget_after, through=through if markers is None or through is None
+                  else jnp.where(moving, merge, through))
     hits, valid = hit_points(pose, readings, angles, radius, jnp)
+    on_mover = jnp.zeros(hits.shape[0], bool) if markers is None else near_movers(hits, markers)
     add = _add_hits if hits.shape[0] <= memory.points.shape[0] else _add_hits_in_turn
-    pts, seen, slot = add(memory.points, seen, memory.slot, hits, valid, t, merge)
-    return Memory(pts, seen, slot)
+    pts, seen, slot, moving = add(memory.points, seen, memory.slot, moving, hits, valid, on_mover, t, merge)
+    return Memory(pts, seen, slot, moving)
 
 
 def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: float, merge: float, forget_after: float,
            through: float | None = None):
     """``seen`` ``(K,)`` after forgetting the points ``pts`` ``(K, 2)`` that a ray of this tick passes through, short
-    of what it hit (farther than ``merge`` before it, within ``through`` of the ray; ``merge`` when None), and
-    those older than ``forget_after`` s: −inf for them (see :func:`update`).
+    of what it hit (farther than ``merge`` before it, within ``through`` of the ray — m, or ``(K,)`` one for each
+    point; ``merge`` when None), and those older than ``forget_after`` s: −inf for them (see :func:`update`).
 
     A ray passing *beside* a point proves free only the ray's own line: at the end of a wall (or any convex
     corner) a ray that just misses the end passes within a few millimetres of the point the IR saw on the end, and
@@ -72,27 +82,31 @@ def forget(pts, seen, pose, readings, angles, t, *, radius: float, range_m: floa
     along = rx * cos[None, :] + ry * sin[None, :]
     across = jnp.abs(rx * sin[None, :] - ry * cos[None, :])
     free_to = jnp.where(jnp.isfinite(readings), readings, range_m) - merge
-    through = (along >= 0) & (along < free_to[None, :]) & (across < (merge if through is None else through))
+    width = jnp.broadcast_to(jnp.asarray(merge if through is None else through, jnp.float32), seen.shape)
+    through = (along >= 0) & (along < free_to[None, :]) & (across < width[:, None])
     return jnp.where(jnp.any(through, axis=1) | (t - seen > forget_after), -jnp.inf, seen)
 
 
-def _add_hits_in_turn(pts, seen, slot, hits, ok, t, merge: float):
+def _add_hits_in_turn(pts, seen, slot, moving, hits, ok, on_mover, t, merge: float):
     """Add the hits ``(m, 2)`` where ``ok`` ``(m,)`` one after the other (the definition): a hit within ``merge``
-    of a remembered point refreshes it, any other takes the ring's next slot. Returns ``(pts, seen, slot)``."""
+    of a remembered point refreshes it, any other takes the ring's next slot; either way the point is ``moving``
+    as the hit is ``on_mover`` ``(m,)``. Returns ``(pts, seen, slot, moving)``."""
     def add(carry, x):
-        pts, seen, slot = carry
-        q, ok = x
+        pts, seen, slot, moving = carry
+        q, ok, mv = x
         near = jnp.isfinite(seen) & (_distance(pts[:, 0], pts[:, 1], q[0], q[1]) < merge)
         seen = jnp.where(ok & near, t, seen)  # refresh the points it merges with
+        moving = jnp.where(ok & near, mv, moving)
         put = ok & ~jnp.any(near)
         pts = jnp.where(put, pts.at[slot].set(q), pts)
         seen = jnp.where(put, seen.at[slot].set(t), seen)
-        return (pts, seen, jnp.where(put, (slot + 1) % pts.shape[0], slot)), None
+        moving = jnp.where(put, moving.at[slot].set(mv), moving)
+        return (pts, seen, jnp.where(put, (slot + 1) % pts.shape[0], slot), moving), None
 
-    return jax.lax.scan(add, (pts, seen, slot), (hits, ok))[0]
+    return jax.lax.scan(add, (pts, seen, slot, moving), (hits, ok, on_mover))[0]
 
 
-def _add_hits(pts, seen, slot, hits, ok, t, merge: float):
+def _add_hits(pts, seen, slot, moving, hits, ok, on_mover, t, merge: float):
     """:func:`_add_hits_in_turn` without a loop over the memory (for m ≤ K hits, when a tick's puts cannot wrap
     round the ring onto each other): the same points and times to the bit, at a fraction of the cost — a
     loop of m steps over K slots is m × a few XLA kernels per tick, the costliest part of the fields' step.
@@ -119,7 +133,17 @@ def _add_hits(pts, seen, slot, hits, ok, t, merge: float):
     # its slot's time to t too — so whether it was overwritten first does not matter here.
     seen = jnp.where(jnp.any(ok[:, None] & near, axis=0), t, seen)
     into = jnp.where(put, (slot + before) % k, k)  # k: not put (dropped)
-    return (pts.at[into].set(hits, mode="drop"), seen.at[into].set(t, mode="drop"), (slot + count) % k)
+    # A slot is ``moving`` as the last hit that touched it: one that refreshed the point there before a put
+    # overwrote it (hit j sees the old point while the put that overwrites it, number turn, is still to come), the
+    # put itself, or a later hit that merged with what the put left.
+    order = jnp.arange(m)
+    put_at = put[:, None] & (into[:, None] == jnp.arange(k)[None, :])  # (m, K)
+    after_put = ok[:, None] & jnp.any(close[:, :, None] & put_at[None, :, :] &
+                                      (order[:, None, None] > order[None, :, None]), axis=1)
+    touched = (ok[:, None] & near & (before[:, None] <= turn[None, :])) | put_at | after_put
+    last = jnp.max(jnp.where(touched, order[:, None], -1), axis=0)
+    moving = jnp.where(last >= 0, on_mover[jnp.maximum(last, 0)], moving)
+    return (pts.at[into].set(hits, mode="drop"), seen.at[into].set(t, mode="drop"), (slot + count) % k, moving)
 
 
 def _distance(ax, ay, bx, by):

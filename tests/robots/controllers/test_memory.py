@@ -62,7 +62,8 @@ def random_tick(rng, k: int, m: int):
     if rng.random() < 0.3:
         hits[rng.integers(m)] = hits[rng.integers(m)]  # two sensors see the same point
     ok = rng.random(m) < rng.random()
-    return pts, seen, np.int32(rng.integers(k)), hits, ok, np.float32(rng.uniform(5, 10))
+    moving, on_mover = rng.random(k) < 0.5, rng.random(m) < 0.5
+    return pts, seen, np.int32(rng.integers(k)), moving, hits, ok, on_mover, np.float32(rng.uniform(5, 10))
 
 
 @pytest.mark.parametrize("k, m", [(12, 12), (16, 8), (256, 12)])
@@ -83,7 +84,7 @@ def test_a_wrapping_ring_overwrites_the_point_a_later_hit_would_have_merged_with
     seen = np.array([1.0, -np.inf], np.float32)
     hits = np.array([[1.0, 1.0], [2.0, 2.0], [0.0, 0.0]], np.float32)
     ok = np.ones(3, bool)
-    out = IN_TURN(pts, seen, np.int32(1), hits, ok, np.float32(3.0), merge=0.01)
+    out = IN_TURN(pts, seen, np.int32(1), np.zeros(2, bool), hits, ok, np.zeros(3, bool), np.float32(3.0), merge=0.01)
     np.testing.assert_array_equal(np.asarray(out[0]), [[2.0, 2.0], [0.0, 0.0]])
     np.testing.assert_array_equal(np.asarray(out[1]), [3.0, 3.0])
     assert int(out[2]) == 0
@@ -130,4 +131,23 @@ def test_a_ray_forgets_a_point_it_passes_within_through_of_and_keeps_one_beside_
     np.testing.assert_allclose(np.asarray(m.points[0]), [0.625, 0.5], atol=1e-6)
     after = memory.update(m, jnp.asarray([0.5, 0.5 + beside, 0.0]), jnp.full(12, jnp.inf), angles, 1.0, through=through,
                           **kw)
+    assert int(jnp.sum(jnp.isfinite(after.seen))) == int(kept)
+
+
+@pytest.mark.parametrize("mover_at, kept", [(None, True), ((0.645, 0.5), False), ((0.745, 0.5), True)])
+def test_a_point_sensed_on_a_declared_mover_is_forgotten_by_a_ray_passing_beside_it(mover_at, kept):
+    """The point of the test above, seen at (0.625, 0.5) with a declared mover of radius 2 cm at ``mover_at``: centred
+    2 cm behind the point, the hit is on the mover's surface and remembered as moving — the ray passing 8 mm beside
+    it a tick later forgets it within ``merge`` (1 cm), as a mover's trail must clear; a mover 12 cm behind the
+    point (10 cm from its surface, beyond the 1 cm binding margin) leaves the hit still, kept within ``through``."""
+    angles = jnp.asarray(LONG_RANGE.angles, jnp.float32)
+    kw = dict(radius=0.025, range_m=0.175, merge=0.01, forget_after=10.0, through=0.005)
+    markers = np.zeros((0, 5), np.float32) if mover_at is None else np.array([[*mover_at, 0.0, 0.0, 0.02]], np.float32)
+    ir = np.full(12, np.inf)
+    ir[0] = 0.1
+    m = memory.update(memory.empty(16), jnp.asarray([0.5, 0.5, 0.0]), jnp.asarray(ir), angles, 0.0,
+                      markers=jnp.asarray(markers), **kw)
+    assert bool(m.moving[0]) == (not kept)
+    after = memory.update(m, jnp.asarray([0.5, 0.508, 0.0]), jnp.full(12, jnp.inf), angles, 1.0,
+                          markers=jnp.asarray(markers), **kw)
     assert int(jnp.sum(jnp.isfinite(after.seen))) == int(kept)
