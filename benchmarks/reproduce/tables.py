@@ -379,9 +379,10 @@ def adaptation_table():
     return lines
 
 
-def _robots_grid(kind: str, key: str) -> list[str]:
+def _robots_grid(kind: str, key: str, motion: bool = False) -> list[str]:
     """Success of every architecture on every robot (``kind``: the named worlds or the claim's suite), the learning
-    architectures frozen and with --learn."""
+    architectures frozen and with --learn; with ``motion``, the mean time and path of the runs that reached the goal
+    (the suite's "all" row; ``kind`` "suite" only)."""
     order = [*LEARNING.split(","), *(f"{a} --learn" for a in LEARNING.split(",")), *STILL.split(",")]
     heads = [f"`{a}`" for a in order]
     lines = ["| robot | " + " | ".join(heads) + " |", "|---|" + "---|" * len(order)]
@@ -394,11 +395,15 @@ def _robots_grid(kind: str, key: str) -> list[str]:
             totals[r["architecture"]] = (k + round((r["success_rate"] or 0.0) * made), n + made)
         from evaluation.compare import wilson
 
+        every = {r["architecture"]: r for r in t.families if r["family"] == "all"} if motion else {}
         cells = []
         for a in order:
             k, n = totals[a]
             lo, hi = wilson(k, n)
-            cells.append(f"{k}/{n} ({lo:.2f}–{hi:.2f})")
+            cell = f"{k}/{n} ({lo:.2f}–{hi:.2f})"
+            if motion and every[a]["mean_time_s"] is not None:
+                cell += f", {every[a]['mean_time_s']:.0f} s, {every[a]['mean_path_m']:.2f} m"
+            cells.append(cell)
         lines.append(f"| `{robot}` | " + " | ".join(cells) + " |")
     return lines
 
@@ -408,7 +413,7 @@ def adaptation_named():
 
 
 def adaptation_suite():
-    return _robots_grid("suite", "families")
+    return _robots_grid("suite", "families", motion=True)
 
 
 @dataclass(frozen=True)
