@@ -22,7 +22,7 @@ import pytest
 EKM = [sys.executable, "-m", "ekm"]
 MOMENTS = [0.5, 1.0, 2.0, 5.0, 20.0]
 COMMANDS = {
-    "train": ["train", "--mapping", "indirect", "--steps", "100000", "--trials", "2", "--out", "m.npz",
+    "train": ["train", "--mapping", "indirect", "--steps", "1000000", "--trials", "2", "--out", "m.npz",
               "--checkpoint", "m.checkpoint.npz"],
     "compare": ["compare", "--worlds", "concave-obstacle,extended-obstacle", "--architectures", "fusion,samba",
                 "--trials", "20", "--workers", "2", "--out", "r.jsonl"],  # about a minute on 2 idle cores
