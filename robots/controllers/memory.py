@@ -137,11 +137,11 @@ def _add_hits(pts, seen, slot, moving, hits, ok, on_mover, t, merge: float):
     # overwrote it (hit j sees the old point while the put that overwrites it, number turn, is still to come), the
     # put itself, or a later hit that merged with what the put left.
     order = jnp.arange(m)
-    put_at = put[:, None] & (into[:, None] == jnp.arange(k)[None, :])  # (m, K)
-    after_put = ok[:, None] & jnp.any(close[:, :, None] & put_at[None, :, :] &
-                                      (order[:, None, None] > order[None, :, None]), axis=1)
-    touched = (ok[:, None] & near & (before[:, None] <= turn[None, :])) | put_at | after_put
-    last = jnp.max(jnp.where(touched, order[:, None], -1), axis=0)
+    refreshed = ok[:, None] & near & (before[:, None] <= turn[None, :])  # (m, K) the old points
+    later = ok[:, None] & close & (order[:, None] > order[None, :])  # [j, p]: hit j merges with put p after it
+    last_put = jnp.maximum(order, jnp.max(jnp.where(later, order[:, None], -1), axis=0))  # (m,) per put
+    last = jnp.maximum(jnp.max(jnp.where(refreshed, order[:, None], -1), axis=0),
+                       jnp.full(k, -1).at[into].set(last_put, mode="drop"))
     moving = jnp.where(last >= 0, on_mover[jnp.maximum(last, 0)], moving)
     return (pts.at[into].set(hits, mode="drop"), seen.at[into].set(t, mode="drop"), (slot + count) % k, moving)
 
