@@ -46,7 +46,7 @@ fields' equations and adds four things, each with its reason:
    it passes within ``see_through`` (5 mm, the points' radius) of it, not within the 1 cm of ``merge`` that forgot
    a wall's end beside the ray that just missed it, and the robot drove into the end (issue 35, ``niches:0``) —
    but a point last sensed on a declared mover within ``merge`` still, so that the trail a mover leaves in the
-   memory clears as the rays sweep it (with 5 mm for those too the fields lost 4 of 20 ``movers`` worlds);
+   memory clears as the rays sweep it (measured in docs/reproduce/every-kind.md);
 2. **obstacles where they are** (:func:`body_field`): the field of a remembered point is centred on
    the point itself, not on its localisation winner — the lattice's ~24° rows would otherwise shift a
    doorway's edges into the doorway — and its angular width is the angle the robot's body subtends at
