@@ -228,8 +228,8 @@ def _fields_rows(table):
 
 #: Families where the default fields fall short of issue 21's 70 % today, with what was measured: kept as
 #: expected failures (strict: the test fails the day they pass, and the entry must go) so that the shortfall is
-#: on record and the other families stay guarded. ``movers``: 13/20 since the memory keeps walls' ends (commit
-#: 14f032a; 14/20 before) — time limits at corridors a mover shuttles along (docs/reproduce/every-kind.md).
+#: on record and the other families stay guarded. ``movers``: 13/20 since the memory keeps walls' ends (16/20
+#: before) — time limits at corridors a mover shuttles along (docs/reproduce/every-kind.md).
 SHORT_OF_70 = ("movers",)
 
 
