@@ -40,7 +40,7 @@ def _reset_all(keys, task, config):
 #: Runs stepped together inside one call: larger batches go through in blocks of this many (``lax.map`` of a
 #: ``vmap``), which keeps a block's arrays in cache: on CPU, one ``vmap`` of thousands of runs is several times
 #: slower a run (docs/performance.md has the measurements).
-BLOCK = 32
+BLOCK = 16
 
 
 def _step_one(state, action, done, task, config):

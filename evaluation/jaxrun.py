@@ -56,7 +56,7 @@ RUNNING, WAITING, ARRIVED, TRAPPED, TIMEOUT = 0, 1, 2, 3, 4
 ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit"}
 
 #: Runs stepped together as one ``vmap`` (the blocks of :func:`advance`).
-BLOCK = 32
+BLOCK = 16
 
 #: Ticks of one chunk of the scan (4.1 s of 0.128 s ticks): how long a run that needs a new plan may wait for it.
 CHUNK_TICKS = 32
