@@ -66,6 +66,7 @@ class Outcome(Result):
     spec: object = field(repr=False, compare=False)
     spec_maps: object = field(repr=False, compare=False, default=None)  # the maps that drove (None: none)
     learn_spelling: str | None = field(repr=False, compare=False, default=None)  # the learning rule, if any
+    engine: str = field(repr=False, compare=False, default="pymunk")  # the robot's world: "pymunk" or "jax"
     robot: str = "khepera"
     robot_fingerprint: str = ""
     map_robot: str | None = None
@@ -73,14 +74,14 @@ class Outcome(Result):
     motion: dict = field(default_factory=dict)
 
     @classmethod
-    def of(cls, rec, config, spec, maps=None, learn_spelling: str | None = None) -> "Outcome":
+    def of(cls, rec, config, spec, maps=None, learn_spelling: str | None = None, engine: str = "pymunk") -> "Outcome":
         """The outcome of the run ``rec`` (:meth:`evaluation.scenario.RunRecord.outcome`); ``maps`` drove it,
-        learning by the rule ``learn_spelling`` (None: frozen)."""
+        learning by the rule ``learn_spelling`` (None: frozen), in the world of ``engine``."""
         from evaluation.motion import KEYS
 
         out = rec.outcome()
         return cls(**{k: v for k, v in out.items() if k not in KEYS}, motion={k: out[k] for k in KEYS},
-                   config=config, record=rec, spec=spec, spec_maps=maps, learn_spelling=learn_spelling)
+                   config=config, record=rec, spec=spec, spec_maps=maps, learn_spelling=learn_spelling, engine=engine)
 
     def __getattr__(self, name: str):
         motion = self.__dict__.get("motion", {})
@@ -121,9 +122,10 @@ class Outcome(Result):
     def _dict(self) -> dict:
         from ekm.provenance import provenance
 
-        hidden = ("config", "record", "spec", "spec_maps", "learn_spelling", "motion")
+        hidden = ("config", "record", "spec", "spec_maps", "learn_spelling", "engine", "motion")
         outcome = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in hidden}
-        return {**outcome, **self.motion, "learn": self.learn_spelling, "config": asdict(self.config), **provenance()}
+        return {**outcome, **self.motion, "learn": self.learn_spelling, "engine": self.engine,
+                "config": asdict(self.config), **provenance()}
 
     def plot(self, ax=None):
         """The run to scale on ``ax`` (a new figure sized to the arena if None): world, path coloured by
@@ -151,7 +153,7 @@ class Outcome(Result):
 
 def run(world, architecture: str, *, maps=None, trial: int | None = None, sensors: str | None = None,
         recover: bool = True, seed: int = 0, time_limit: float | None = None, checkpoints: str = "visible",
-        cell: float | None = None, robot=None, learn=None, progress: bool = False) -> Outcome:
+        cell: float | None = None, robot=None, learn=None, progress: bool = False, engine: str = "pymunk") -> Outcome:
     """Drive the simulated robot from the world's start to its goal: the slippery-cell planner's
     checkpoints, reached by one architecture (thesis ch. 4.4–5, 6.2; docs/design.md §5).
 
@@ -192,7 +194,12 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         ``"error"``, ``"constant:eta=0.1,sigma=1"`` (:func:`robots.controllers.learner.parse_learning`);
         the map it ends with is ``outcome.learned`` (``save_map``). Default: the map is frozen.
     progress : bool, default False
-        Show a progress bar in simulated seconds on stderr.
+        Show a progress bar in simulated seconds on stderr (pymunk only: the JAX engine runs the whole run as one
+        batch).
+    engine : {"pymunk", "jax"}, default "pymunk"
+        The robot's world: pymunk (the reference) or the JAX engine (:mod:`evaluation.jaxrun`, a batch of one;
+        worlds with movers, timed events or a moving goal are refused). The record is the same kind either way;
+        the JAX run keeps no checkpoint, trap or IR-hit log, so its plot marks none.
 
     Returns
     -------
@@ -206,11 +213,13 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         out = ekm.run("concave-obstacle", architecture="fields", seed=1)
         out.reached, out.time_s
     """
+    from ekm.api.comparing import ENGINES
     from ekm.api.mapset import Map, load
     from ekm.api.worlds import world as load_world
     from evaluation.scenario import run_architecture
     from robots.controllers.spec import parse_architecture
 
+    choice(engine, ENGINES, "--engine", _PROG)
     if sensors is not None:
         choice(sensors, SENSORS, "--sensors", _PROG)
     config = scenario_config(_PROG, time_limit=time_limit, recover=recover, checkpoints=checkpoints, cell=cell)
@@ -244,6 +253,10 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
             raise InputError(f"--trial {trial}: the map file holds trials 0..{maps.trials - 1}")
     from ekm import interrupts
 
+    if engine == "jax":
+        rec = _run_on_jax(w, spec, maps, seed=seed, trial=trial if spec.uses_map else None, config=config,
+                          robot=robot, learn=learning)
+        return Outcome.of(rec, config, spec, maps, None if learning is None else spell_learning(learning), engine)
     bar = None
     if progress:
         from tqdm import tqdm
@@ -264,3 +277,25 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         if bar is not None:
             bar.close()
     return Outcome.of(rec, config, spec, maps, None if learning is None else spell_learning(learning))
+
+
+def _run_on_jax(world, spec, maps, *, seed: int, trial, config, robot, learn):
+    """The :class:`~evaluation.scenario.RunRecord` of one run on the JAX engine: :func:`evaluation.jaxrun.run_batch`
+    with a batch of one, the architecture built as :func:`evaluation.scenario.run_architecture` builds it."""
+    from ekm import interrupts
+    from evaluation.jaxrun import run_batch, setup_for, start_run
+    from evaluation.scenario import driven, driver, split_step
+    from robots.jaxworld.scene import refuse_unsimulated
+
+    refuse_unsimulated(world)
+    d = driver(spec, maps, seed=seed, trial=trial, source=maps.source if maps is not None else "", robot=robot,
+               learn=learn)
+    parts = split_step(d.controller.step)
+    if parts is None:
+        raise InputError(f"--engine jax: the step of {spec.name} is not one jitted function with its maps as "
+                         f"keywords; use the pymunk engine")
+    func, arrays, static = parts
+    done: list = [None]
+    run_batch([start_run(world, d.controller, seed, config, d.controller.spec)], [d.controller.init()], [arrays],
+              setup_for(d.controller, func, static, config), done.__setitem__, between=interrupts.check)
+    return driven(done[0], d)

@@ -59,6 +59,9 @@ def add_parser(sub) -> None:
                         "with it")
     p.add_argument("--trial", type=nonneg_int, metavar="K", help="which trial of the map drives (default: seed %% trials)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="noise seed of the run (default 0)")
+    p.add_argument("--engine", choices=("pymunk", "jax"), default="pymunk",
+                   help="the robot's world: pymunk (default, the reference) or jax (the JAX engine; no movers, timed "
+                        "events or moving goals; its plot marks no checkpoints, traps or IR hits; docs/guide/jaxworld.md)")
     p.add_argument("--plot", metavar="PNG|SVG|PDF", help="draw the run to scale (Fig. 6.3-6.8)")
     p.add_argument("--gif", metavar="GIF", help="animate the run")
     p.add_argument("--maps-at", type=nonneg_float, metavar="T",
@@ -92,9 +95,12 @@ def run(args) -> None:
             raise InputError(f"--maps-at: architecture {name} has no action maps (only samba has)")
         if not plot:
             raise InputError("--maps-at: needs --plot PNG to draw the maps on")
+        if args.engine != "pymunk":
+            raise InputError("--maps-at: draws a tick of the pymunk engine's run; drop --engine jax")
     outcome = drive(args.world, args.architecture, maps=args.map, trial=args.trial, sensors=args.sensors,
                     recover=args.recover, seed=args.seed, time_limit=args.time_limit, checkpoints=args.checkpoints,
-                    cell=args.cell, robot=args.robot, learn=args.learn, progress=show_progress(args))
+                    cell=args.cell, robot=args.robot, learn=args.learn, progress=show_progress(args),
+                    engine=args.engine)
     rec, spec = outcome.record, outcome.spec
     if plot and args.maps_at is not None:  # the same run again, recording the tick nearest T (a run is pure)
         from evaluation.actionmap_plot import record_tick, save_run_with_maps
@@ -114,7 +120,8 @@ def run(args) -> None:
     out = outcome.to_dict()
     status = outcome_status(out)
     drives = f", {out['map']}, trial {out['trial']}" if spec.uses_map else ""
-    print(f"{rec.world.name}: {spec} on {out['robot']} (seed {args.seed}{drives})")
+    where = "" if args.engine == "pymunk" else f", {args.engine} engine"
+    print(f"{rec.world.name}: {spec} on {out['robot']} (seed {args.seed}{drives}{where})")
     if out["map_robot"] is not None and out["map_robot"] != out["robot"]:
         print(f"  note: the map was trained on {out['map_robot']}, not on {out['robot']}")
     if out["learn"] is not None:

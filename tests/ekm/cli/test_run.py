@@ -124,6 +124,31 @@ def test_maps_at_draws_samba_s_action_maps_below_the_run(capsys, tmp_path):
     assert png.stat().st_size > 50_000
 
 
+def test_the_jax_engine_drives_the_same_route_and_says_so(capsys):
+    """The planner's route through the concave obstacle's world is one checkpoint, the goal; on the JAX engine the
+    fields reach it without a collision as on pymunk, and the record names the engine."""
+    status, out, err = run(capsys, "--world", "concave-obstacle", "--architecture", "fields", "--engine", "jax",
+                           "--json")
+    rec = json.loads(out)
+    assert status == 0 and err == "" and rec["engine"] == "jax"
+    assert rec["reached"] and rec["collisions"] == 0 and rec["checkpoints_reached"] == 1 and rec["trial"] == 0
+    assert rec["final_distance_m"] < 0.005  # within the 5 mm of docs/design.md §5
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--world", "three-rooms-moving", "--architecture", "samba", "--engine", "jax"],
+     "engine jax: world 'three-rooms-moving' has moving obstacles"),
+    (["--world", "open-arena", "--architecture", "samba", "--engine", "jax", "--maps-at", "1", "--plot", "x.png"],
+     "--maps-at: draws a tick of the pymunk engine's run"),
+    (["--world", "open-arena", "--architecture", "samba", "--engine", "gpu"], "--engine"),
+])
+def test_what_the_jax_engine_cannot_run_is_one_line(capsys, tmp_path, monkeypatch, argv, message):
+    monkeypatch.chdir(tmp_path)
+    status, out, err = run(capsys, *argv)
+    assert status == 2 and out == "" and message in err and err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--architecture", "fusion", "--maps-at", "5", "--plot", "x.png"],
      "--maps-at: architecture fusion has no action maps (only samba has)"),
