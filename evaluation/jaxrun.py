@@ -557,11 +557,12 @@ def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ti
 
 
 def run_scenarios(runs, controller, config: ScenarioConfig = ScenarioConfig(),
-                  chunk_ticks: int = CHUNK_TICKS) -> list[RunRecord]:
+                  chunk_ticks: int = CHUNK_TICKS, between=lambda: None) -> list[RunRecord]:
     """:func:`evaluation.scenario.run_scenario` for many runs of one ``controller`` at once: ``runs`` a list of
     ``(world, seed)``; their :class:`RunRecord` in that order (raises what :func:`start_run` raises for a run that
     cannot start). The controller's step must be one jitted function with keywords
-    (:func:`~evaluation.scenario.split_step`), as every shipped architecture's is."""
+    (:func:`~evaluation.scenario.split_step`), as every shipped architecture's is. ``between()`` is called between
+    chunks (:func:`run_batch`)."""
     from ekm.errors import InputError
 
     parts = split_step(controller.step)
@@ -571,5 +572,5 @@ def run_scenarios(runs, controller, config: ScenarioConfig = ScenarioConfig(),
     started = [start_run(world, controller, seed, config, controller.spec) for world, seed in runs]
     records: list = [None] * len(started)
     run_batch(started, [controller.init()] * len(started), [arrays] * len(started),
-              setup_for(controller, func, static, config), records.__setitem__, chunk_ticks)
+              setup_for(controller, func, static, config), records.__setitem__, chunk_ticks, between=between)
     return records

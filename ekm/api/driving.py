@@ -280,22 +280,12 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
 
 
 def _run_on_jax(world, spec, maps, *, seed: int, trial, config, robot, learn):
-    """The :class:`~evaluation.scenario.RunRecord` of one run on the JAX engine: :func:`evaluation.jaxrun.run_batch`
-    with a batch of one, the architecture built as :func:`evaluation.scenario.run_architecture` builds it."""
+    """The :class:`~evaluation.scenario.RunRecord` of one run on the JAX engine (:func:`evaluation.jaxrun.run_scenarios`,
+    a batch of one), the architecture built as :func:`evaluation.scenario.run_architecture` builds it."""
     from ekm import interrupts
-    from evaluation.jaxrun import run_batch, setup_for, start_run
-    from evaluation.scenario import driven, driver, split_step
-    from robots.jaxworld.scene import refuse_unsimulated
+    from evaluation.jaxrun import run_scenarios
+    from evaluation.scenario import driven, driver
 
-    refuse_unsimulated(world)
     d = driver(spec, maps, seed=seed, trial=trial, source=maps.source if maps is not None else "", robot=robot,
                learn=learn)
-    parts = split_step(d.controller.step)
-    if parts is None:
-        raise InputError(f"--engine jax: the step of {spec.name} is not one jitted function with its maps as "
-                         f"keywords; use the pymunk engine")
-    func, arrays, static = parts
-    done: list = [None]
-    run_batch([start_run(world, d.controller, seed, config, d.controller.spec)], [d.controller.init()], [arrays],
-              setup_for(d.controller, func, static, config), done.__setitem__, between=interrupts.check)
-    return driven(done[0], d)
+    return driven(run_scenarios([(world, seed)], d.controller, config, between=interrupts.check)[0], d)

@@ -228,8 +228,8 @@ def _fields_rows(table):
 
 #: Families where the default fields fall short of issue 21's 70 % today, with what was measured: kept as
 #: expected failures (strict: the test fails the day they pass, and the entry must go) so that the shortfall is
-#: on record and the other families stay guarded. ``movers``: 13/20 since the memory keeps walls' ends (16/20
-#: before) — time limits at corridors a mover shuttles along (docs/reproduce/every-kind.md).
+#: on record and the other families stay guarded. ``movers``: time limits at corridors a mover shuttles along; the
+#: measurements are in docs/reproduce/every-kind.md.
 SHORT_OF_70 = ("movers",)
 
 
@@ -244,7 +244,7 @@ def test_the_default_fields_reach_85_percent_overall_and_70_percent_in_every_fam
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 35 (open): the fields reach 13 of the 20 movers test worlds")
+@pytest.mark.xfail(strict=True, reason="issue 35 (open): the fields fall short among movers (docs/reproduce/every-kind.md)")
 @pytest.mark.parametrize("family", SHORT_OF_70)
 def test_the_default_fields_reach_70_percent_in_the_families_still_short(table, family):
     assert _fields_rows(table)[family]["success_rate"] >= 0.70, _fields_rows(table)[family]
