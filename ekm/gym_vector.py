@@ -12,8 +12,9 @@ The task — observation, action, reward, checkpoints — is :mod:`robots.jaxwor
 (``metadata["autoreset_mode"] == AutoresetMode.NEXT_STEP``): the step after a sub-environment's episode ends
 resets it — its action is ignored, and it returns the new episode's first observation with reward 0 and
 ``terminated = truncated = False``. ``reset(seed=s)`` gives sub-environment ``i`` the PRNG key ``fold_in(key(s),
-i)``: the same seed, the same runs, whatever else runs beside them. Worlds with moving obstacles or timed events
-are refused (the JAX engine does not simulate them).
+i)``: the same seed, the same runs, whatever else runs beside them. Moving obstacles move and unforeseen timed
+events fire; worlds with a moving goal or with events the planner is told of (the pymunk environment replans on
+them) are refused in one line.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from robots.jaxworld import task as jt
+from robots.jaxworld.scene import has_dynamics
 
 
 @partial(jax.jit, static_argnames="config")
@@ -82,7 +84,7 @@ class KheperaVectorEnv(VectorEnv):
             time_limit = min(time_limit, max_episode_steps * load_robot(robot).avoid_period)
         self.world = load_world(world)
         self.robot = load_robot(robot)
-        self.config = jt.config_for(self.robot, sensors, time_limit)
+        self.config = jt.config_for(self.robot, sensors, time_limit, has_dynamics(self.world))
         self.task = jax.tree.map(jnp.asarray, jt.make_task(self.world, self.config, checkpoints))
         self.num_envs = int(num_envs)
         m = len(self.config.sensors.angles)

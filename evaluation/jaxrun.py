@@ -4,10 +4,12 @@
 tick. Here one batch holds one architecture's runs over many (world, seed) pairs, and a tick of all of them is one
 ``vmap`` inside one jitted ``lax.scan``. Each tick does for every run what the pymunk runner's ``episode`` does:
 
+0. if a known timed event has changed the planner's map since the last tick, **wait** for the host to replan (the
+   tick is not taken; it runs once the new plan is in);
 1. pass the checkpoints already within reach or seen past (``pass_checkpoints``: within 5 mm, or near one whose
    successor the robot sees; every ``look_every`` ticks the last of ``look_ahead`` later ones it sees);
 2. sense (the IR with its noise, :func:`robots.jaxworld.engine.sense`) and hand the controller its
-   :class:`~robots.controllers.base.Observation`; after a recovery the robot turns on the spot instead, for at most
+   :class:`~robots.controllers.base.Observation` (the declared movers as markers, :func:`robots.jaxworld.moving.markers`); after a recovery the robot turns on the spot instead, for at most
    ``turn_s``, until the route is ahead (the controller is not stepped on those ticks);
 3. stop at the goal: within 5 mm of it, a command that rounds to zero, or ``settle_s`` spent there, ends the run
    after one period of a zero command;
@@ -27,7 +29,12 @@ pymunk runner builds them (poses at every sub-step, the commands, the plans, con
 measures and results files are the same; ``checkpoint_log``, ``trap_log`` and ``hits`` (what ``ekm run --plot``
 marks) are not kept. Noise: slip ξ ~ U(-1, 1) and IR ξ ~ N(0, 1) from the run's key, ``jax.random.key(seed)`` split every
 tick — the same distributions as the pymunk world's NumPy streams, not the same draws. Times are float32 (k dt).
-Worlds with movers, timed events or a moving goal are refused (:func:`robots.jaxworld.scene.refuse_unsimulated`).
+
+Worlds with movers or timed events run in batches of their own (:func:`run_batch` groups them), stepped with
+``dynamic`` (:func:`robots.jaxworld.engine.step`), their markers padded to a power of two rows (a padding marker
+stands still far away, :data:`robots.jaxworld.moving.FAR`), so that batches of still worlds pay nothing for movers
+and a handful of shapes serves every mover count. Worlds with a moving goal are refused
+(:func:`robots.jaxworld.scene.refuse_unsimulated`).
 """
 
 from __future__ import annotations
@@ -42,18 +49,19 @@ import jax.numpy as jnp
 import numpy as np
 
 from evaluation import jaxmonitor
-from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, replan_from, sensed_points,
-                                 split_step, time_limit_for, turn_on_the_spot, with_sensed)
+from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, mover_radius, replan_from,
+                                 sensed_points, split_step, time_limit_for, turn_on_the_spot, with_sensed)
 from robots import kinematics
 from robots.controllers.base import Observation
-from robots.jaxworld import engine
-from robots.jaxworld.scene import Scene, refuse_unsimulated, scene_of, sizes
+from robots.jaxworld import engine, moving
+from robots.jaxworld.scene import Scene, has_dynamics, refuse_unsimulated, scene_of, shape_of, sizes, stack
 from robots.jaxworld.task import sees, sees_next, sight_need
 from robots.params import RobotParams, SensorSet
 
-#: A run's status: ticking, waiting for the host to replan (recovery), or ended — and how.
-RUNNING, WAITING, ARRIVED, TRAPPED, TIMEOUT = 0, 1, 2, 3, 4
-ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit"}
+#: A run's status: ticking, waiting for the host to replan (recovery, or a known event), or ended — and how.
+RUNNING, WAITING, EVENT, ARRIVED, TRAPPED, TIMEOUT, NO_ROUTE = 0, 1, 2, 3, 4, 5, 6
+ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit",
+         NO_ROUTE: "no route after a change of the map"}
 
 #: Runs stepped together as one ``vmap`` (the blocks of :func:`advance`).
 BLOCK = 16
@@ -67,7 +75,7 @@ class Setup:
     """What every run of a batch shares (static under ``jit``): the robot and its IR ring, the period's sub-steps
     ``n`` and slip draws ``k``, the scenario's rules (:class:`~evaluation.scenario.ScenarioConfig`), the trap
     monitor's, and the controller's step as :func:`~evaluation.scenario.split_step` splits it (``func``,
-    ``static``)."""
+    ``static``); whether the worlds have movers or timed events (``dynamic``) and the markers' rows (``markers``)."""
 
     params: RobotParams
     sensors: SensorSet
@@ -77,6 +85,8 @@ class Setup:
     rule: jaxmonitor.MonitorRule
     func: Any
     static: tuple
+    dynamic: bool = False
+    markers: int = 0
 
     @property
     def visible(self) -> bool:
@@ -88,7 +98,7 @@ class Route(NamedTuple):
     """One run's arrays that the host sets (a leading batch axis in a batch): ``scene`` every shape of its world,
     ``sight`` the planner's map (known shapes and what recovery added), ``checkpoints`` ``(K, 2)`` (goal at
     ``last``, padded by repeating it), ``ticks`` its time limit in ticks, ``may_recover`` whether a trap waits for a
-    new plan (else it ends the run)."""
+    new plan (else it ends the run), ``radii`` ``(M,)`` the markers' radii of its movers (-1: padding)."""
 
     scene: Scene
     sight: Scene
@@ -96,14 +106,16 @@ class Route(NamedTuple):
     last: Any
     ticks: Any
     may_recover: Any
+    radii: Any
 
 
 class RunState(NamedTuple):
     """One run's state between ticks: the engine's, the controller's (``control``), the PRNG ``key``, ``tick``s
     taken, the checkpoint ``index`` headed for and the ``target_id`` the controller sees, whether it stood within the
     goal's tolerance last tick (``settled``) and ``since`` when (s), until when it turns after a recovery
-    (``turn_until``, s), the trap monitor, ``status`` (:data:`RUNNING` …), checkpoints ``passed`` (the goal too) and
-    the time (s) of the tick it stopped at the goal (``stop_t``)."""
+    (``turn_until``, s), the trap monitor, ``status`` (:data:`RUNNING` …), checkpoints ``passed`` (the goal too),
+    the time (s) of the tick it stopped at the goal (``stop_t``) and of its last tick (``last_t``: a known event
+    since then replans)."""
 
     engine: engine.EngineState
     control: Any
@@ -118,12 +130,14 @@ class RunState(NamedTuple):
     status: Any
     passed: Any
     stop_t: Any
+    last_t: Any
 
 
 class TickOut(NamedTuple):
     """What one tick leaves for the record: ``live`` (the run was ticking), the ``pose`` ``(3,)`` and ``ir``
     ``(m,)`` it sensed, the ``command`` ``(2,)`` sent and whether it was the architecture's or recovery's
-    (``commanded``; not on the stop at the goal), the sub-step ``trace`` ``(n, 3)``, contact episodes so far."""
+    (``commanded``; not on the stop at the goal), the sub-step ``trace`` ``(n, 3)``, contact episodes so far, the
+    ``markers`` ``(k, 5)`` it was given."""
 
     live: Any
     pose: Any
@@ -132,6 +146,7 @@ class TickOut(NamedTuple):
     commanded: Any
     trace: Any
     collisions: Any
+    markers: Any
 
 
 def _where(flag, new, old):
@@ -163,9 +178,12 @@ def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
 
 def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState, TickOut]:
     """One 0.128 s tick of one run (the module docstring's steps); a run not :data:`RUNNING` stays as it is."""
-    p, config = setup.params, setup.config
+    p, config, dynamic = setup.params, setup.config, setup.dynamic
     key, k_ir, k_slip = jax.random.split(state.key, 3)
     t = state.engine.k.astype(jnp.float32) * p.dt
+    scene = route.scene
+    changed = jnp.any(scene.event_known & (state.last_t < scene.event_at)
+                      & (scene.event_at <= t + moving.EVENT_SLACK)) if dynamic else jnp.bool_(False)
     pose = state.engine.robot.pose
     pos = pose[:2]
     index, passed = pass_checkpoints(setup, route, pos, state.index, state.tick)
@@ -175,11 +193,11 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
     goal = route.checkpoints[index]
 
     noise = jax.random.normal(k_ir, (len(setup.sensors.angles),))
-    ir = engine.sense(state.engine, route.scene, setup.sensors, noise, p)
+    ir = engine.sense(state.engine, scene, setup.sensors, noise, p, dynamic)
     target = kinematics.egocentric(pose, goal, xp=jnp)
+    markers = moving.markers(scene, t, route.radii)[:setup.markers] if dynamic else jnp.zeros((0, 5), jnp.float32)
     obs = Observation(t=t, ir=ir.astype(jnp.float32), target=target.astype(jnp.float32), target_id=target_id,
-                      final=final, pose=pose, target_velocity=jnp.zeros(2, jnp.float32),
-                      markers=jnp.zeros((0, 5), jnp.float32))
+                      final=final, pose=pose, target_velocity=jnp.zeros(2, jnp.float32), markers=markers)
     turning = (t < state.turn_until) & (jnp.abs(target[0]) > config.turn_tolerance)
     control, wanted = setup.func(state.control, obs, **arrays, **dict(setup.static))
     control = _where(turning, state.control, control)
@@ -191,7 +209,7 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
     stop = inside & (kinematics.is_stop_command(command, p, jnp) | (t - since >= config.settle_s - 1e-9))
 
     slip = jax.random.uniform(k_slip, (setup.k, 2), minval=-1.0, maxval=1.0)
-    eng, trace = engine.step(state.engine, route.scene, jnp.where(stop, 0.0, command), slip, p, setup.n)
+    eng, trace = engine.step(state.engine, scene, jnp.where(stop, 0.0, command), slip, p, setup.n, dynamic)
     t_end = eng.k.astype(jnp.float32) * p.dt
     near = ~stop & ~final & jnp.any(jnp.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance)
     index = index + near
@@ -207,11 +225,12 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
 
     new = RunState(engine=eng, control=control, key=key, tick=ticks, index=index, target_id=target_id + near,
                    settled=inside, since=since, turn_until=turn_until, monitor=monitor, status=status,
-                   passed=state.passed + passed + near + stop, stop_t=jnp.where(stop, t, state.stop_t))
-    live = state.status == RUNNING
+                   passed=state.passed + passed + near + stop, stop_t=jnp.where(stop, t, state.stop_t), last_t=t)
+    live = (state.status == RUNNING) & ~changed
     out = TickOut(live=live, pose=pose, ir=ir, command=command, commanded=~stop, trace=trace,
-                  collisions=eng.collisions)
-    return _where(live, new, state), out
+                  collisions=eng.collisions, markers=markers)
+    held = state._replace(status=jnp.where((state.status == RUNNING) & changed, EVENT, state.status).astype(jnp.int32))
+    return _where(live, new, held), out
 
 
 @partial(jax.jit, static_argnames=("setup", "block", "length"), donate_argnums=(3,))
@@ -247,13 +266,12 @@ def _bucket(n: int) -> int:
     return 1 << max(0, int(n) - 1).bit_length()
 
 
-def _sight_world(known):
-    """The planner's map as shapes the JAX engine can measure: the known world less its unforeseen obstacles."""
-    return replace(known, unforeseen=())
-
-
-def _stack(scenes: list) -> Scene:
-    return Scene(*(np.stack(leaves) for leaves in zip(*scenes)))
+def _sight_world(known, t: float = 0.0):
+    """The planner's map at ``t`` as shapes the JAX engine can measure: the known world less its unforeseen and
+    moving obstacles, with the shapes of the known events due by ``t`` (:meth:`~robots.worldfile.World.known_shapes`,
+    :func:`planner.bitmap.padded_obstacles`)."""
+    added = tuple(s for e in known.events if e.known and e.at_s <= t for s in e.add)
+    return replace(known, unforeseen=(), moving=(), events=(), obstacles=known.obstacles + added)
 
 
 #: Capsules a batch's planner maps keep free for the discs recovery adds (a trap typically adds tens): a map that
@@ -265,12 +283,12 @@ ROOM = 128
 SLOTS = 8
 
 
-def _scenes(worlds: list, room: int = 0) -> Scene:
+def _scenes(worlds: list, room: int = 0, movers: int = 1) -> Scene:
     """The scenes of ``worlds`` stacked, padded to one shape with ``room`` capsules to spare, their number rounded up
-    to a power of two (few shapes, few compilations)."""
+    to a power of two (few shapes, few compilations), with ``movers`` path slots at least."""
     need = np.max([sizes(w) for w in worlds], axis=0)
-    shape = (_bucket(need[0] + room), int(need[1]), int(need[2]))
-    return _stack([scene_of(w, shape) for w in worlds])
+    shape = (_bucket(need[0] + room), int(need[1]), int(need[2]), max(int(need[3]), movers), int(need[4]))
+    return stack([scene_of(w, shape) for w in worlds])
 
 
 def _padded(checkpoints: list, slots: int) -> np.ndarray:
@@ -281,8 +299,8 @@ def _padded(checkpoints: list, slots: int) -> np.ndarray:
 @dataclass
 class Run:
     """One run's host side: its world, seed and body (the controller: robot and sensors), the plan it follows and
-    the planner's map (``known``), recoveries so far, the record being written, and every tick's sensing on which
-    the IR saw something (``sensed``: (t, pose, readings, markers), as :func:`evaluation.scenario.sensed_points`
+    the planner's map (``known``, as it stands at ``map_t``: known events by then on it), recoveries so far, the
+    record being written, and every tick's sensing on which the IR saw something (``sensed``: (t, pose, readings, markers), as :func:`evaluation.scenario.sensed_points`
     takes it)."""
 
     world: Any
@@ -296,6 +314,7 @@ class Run:
     replans: int = 0
     trapped_why: str = "trapped"
     collisions: int = 0
+    map_t: float = 0.0
     sensed: list = field(default_factory=list)
     poses: list = field(default_factory=list)
     times: list = field(default_factory=list)
@@ -328,8 +347,9 @@ def _taken(run: Run, outs: TickOut, i: int, setup: Setup) -> None:
     starts = t0 + n * dt * np.arange(len(live))  # each tick's time
     poses, irs, commands = outs.pose[i, live].astype(float), outs.ir[i, live].astype(float), outs.command[i, live]
     commanded, collisions = outs.commanded[i, live], outs.collisions[i, live]
+    markers = outs.markers[i, live, :len(run.world.moving)]  # the world's own rows, as the pymunk runner keeps them
     for j in np.flatnonzero(np.isfinite(irs).any(axis=1)):
-        run.sensed.append((starts[j], poses[j], irs[j], np.zeros((0, 5), np.float32)))
+        run.sensed.append((starts[j], poses[j], irs[j], markers[j]))
     run.rec.commands.extend((starts[j], float(commands[j, 0]), float(commands[j, 1]))
                             for j in np.flatnonzero(commanded))
     trace = outs.trace[i, live].astype(float)
@@ -376,7 +396,18 @@ def recover(run: Run, pose, t: float, config: ScenarioConfig):
         run.trapped_why = "trapped (no route around the sensed obstacle)"
         return None
     run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added))
-    run.plan, run.known, run.replans = current, known, run.replans + 1
+    run.plan, run.known, run.replans, run.map_t = current, known, run.replans + 1, t
+    return current.checkpoints
+
+
+def after_event(run: Run, pose, t: float, config: ScenarioConfig):
+    """The pymunk runner's replan after a known event (:func:`evaluation.scenario.after_events`) for a run whose
+    map changed by ``t``, the robot at ``pose``: its checkpoints on the new plan, or None (no route)."""
+    current = replan_from(run.plan, run.known, np.asarray(pose[:2], float), t, run.body.robot, config)
+    if current is None:
+        return None
+    run.rec.plans.append(PlanChange(t, "event", current.checkpoints.copy()))
+    run.plan, run.replans, run.map_t = current, run.replans + 1, t
     return current.checkpoints
 
 
@@ -390,12 +421,42 @@ def setup_for(body, func, static, config: ScenarioConfig) -> Setup:
                  rule=rule, func=func, static=static)
 
 
+#: The fewest markers' rows of a batch of worlds with movers: fewer shapes to compile (1 to 4 movers share one).
+MIN_MARKERS = 4
+
+
+def kind(world) -> tuple[bool, int]:
+    """The batch a world runs in: whether it has movers or timed events, and its markers' rows (its movers rounded
+    up to a power of two, at least :data:`MIN_MARKERS`; 0 without movers)."""
+    return has_dynamics(world), (max(MIN_MARKERS, _bucket(len(world.moving))) if world.moving else 0)
+
+
 def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int = CHUNK_TICKS,
               between=lambda: None) -> None:
-    """Drive ``runs`` (started by :func:`start_run`) to their ends in one batch: ``controls[i]`` the controller's
-    fresh state and ``arrays[i]`` its step's array keywords (:func:`~evaluation.scenario.split_step`) for run ``i``.
-    ``on_done(i, record)`` receives each run's :class:`RunRecord` as it ends (at the end of the chunk it ended in);
-    ``between()`` is called between chunks (Ctrl-C). The imperative shell of the module docstring."""
+    """Drive ``runs`` (started by :func:`start_run`) to their ends, in one batch for each :func:`kind` of world:
+    ``controls[i]`` the controller's fresh state and ``arrays[i]`` its step's array keywords
+    (:func:`~evaluation.scenario.split_step`) for run ``i``. ``on_done(i, record)`` receives each run's
+    :class:`RunRecord` as it ends (at the end of the chunk it ended in); ``between()`` is called between chunks
+    (Ctrl-C). The imperative shell of the module docstring."""
+    groups: dict = {}
+    for i, r in enumerate(runs):
+        groups.setdefault(kind(r.world), []).append(i)
+    for (dynamic, rows), members in sorted(groups.items()):
+        _run_group([runs[i] for i in members], [controls[i] for i in members], [arrays[i] for i in members],
+                   replace(setup, dynamic=dynamic, markers=rows),
+                   lambda k, rec, members=members: on_done(members[k], rec), chunk_ticks, between)
+
+
+def _radii(world, m: int) -> np.ndarray:
+    """The markers' radii ``(m,)`` of ``world``'s movers, -1 for the padding rows."""
+    radii = np.full(m, -1.0, np.float32)
+    radii[:len(world.moving)] = [mover_radius(mv.shape) for mv in world.moving]
+    return radii
+
+
+def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int,
+               between) -> None:
+    """:func:`run_batch` for runs of one :func:`kind`, ``setup`` set for it."""
     config = setup.config
     b = len(runs)
     blk = min(BLOCK, b)
@@ -407,10 +468,13 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
     grid = jaxmonitor.grid_size(extent, config.trap_ground)
     cps = [np.asarray(r.plan.checkpoints, np.float32) for r in slots]
     room = ROOM if may else 0
-    routes = Route(scene=_scenes([r.world for r in slots]), sight=_scenes([_sight_world(r.known) for r in slots], room),
+    scene = _scenes([r.world for r in slots], movers=max(setup.markers, 1))
+    m = shape_of(scene)[3]
+    routes = Route(scene=scene, sight=_scenes([_sight_world(r.known, r.map_t) for r in slots], room),
                    checkpoints=_padded(cps, _bucket(max(len(c) for c in cps) + (SLOTS if may else 0))),
                    last=np.array([len(c) - 1 for c in cps], np.int32),
-                   ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may))
+                   ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may),
+                   radii=np.stack([_radii(r.world, m) for r in slots]))
     starts = jnp.asarray(np.stack([r.world.start for r in slots]), jnp.float32)
     eng = jax.vmap(partial(engine.reset, params=setup.params))(starts, jax.tree.map(jnp.asarray, routes.scene))
     stack = partial(jax.tree.map, lambda *a: jnp.stack(a))
@@ -421,7 +485,7 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
                      since=zeros(jnp.float32), turn_until=zeros(jnp.float32),
                      monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (len(slots),) + a.shape), jaxmonitor.init(grid)),
                      status=jnp.asarray(np.where(ids >= 0, RUNNING, TIMEOUT), jnp.int32), passed=zeros(jnp.int32),
-                     stop_t=zeros(jnp.float32))
+                     stop_t=zeros(jnp.float32), last_t=zeros(jnp.float32))
     arrays = stack(*arrays)
     open_ = ids >= 0
     while open_.any():
@@ -430,9 +494,9 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
         status = np.asarray(state.status)
         for k in np.flatnonzero(open_):
             _taken(slots[k], outs, k, setup)
-        waiting = np.flatnonzero(open_ & (status == WAITING))
+        waiting = np.flatnonzero(open_ & ((status == WAITING) | (status == EVENT)))
         if len(waiting):
-            routes, state = _recoveries(slots, waiting, routes, state, setup)
+            routes, state = _replans(slots, waiting, routes, state, setup)
             status = np.asarray(state.status)
         ended = np.flatnonzero(open_ & (status >= ARRIVED))
         if len(ended):
@@ -448,52 +512,57 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
         between()
 
 
-def _recoveries(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
-    """Recovery for every run in ``waiting``: new plans and maps into ``routes``, the runs' states restarted on them
-    (index 0, a new target, the monitor reset, a turn to face the route) — or ended trapped."""
+def _replans(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
+    """New plans for every run in ``waiting`` — recovery (:data:`WAITING`, :func:`recover`) or a known event
+    (:data:`EVENT`, :func:`after_event`) — into ``routes`` with their maps, the runs' states restarted on them (index
+    0, a new target, the monitor reset; after a recovery a turn to face the route) — or ended (trapped; no route)."""
     config = setup.config
     poses = np.asarray(state.engine.robot.pose)
     ks = np.asarray(state.engine.k)
+    status = np.asarray(state.status).copy()
     new = {}
     for i in waiting:
         t = float(np.float32(ks[i]) * np.float32(setup.params.dt))
-        new[int(i)] = (t, recover(runs[i], poses[i], t, config))
+        event = status[i] == EVENT
+        new[int(i)] = (t, event, (after_event if event else recover)(runs[i], poses[i], t, config))
     cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
     slots = max(routes.checkpoints.shape[1], _bucket(max(len(c) for c in cps)))
-    routes = routes._replace(sight=_grown(routes.sight, runs, [i for i, (_, c) in new.items() if c is not None]),
+    routes = routes._replace(sight=_grown(routes.sight, runs, [i for i, (_, _, c) in new.items() if c is not None]),
                              checkpoints=_padded(cps, slots), last=np.array([len(c) - 1 for c in cps], np.int32))
-    status = np.asarray(state.status).copy()
-    index, target_id, turn_until = (np.asarray(a).copy() for a in (state.index, state.target_id, state.turn_until))
+    index, target_id, turn_until, last_t = (np.asarray(a).copy() for a in (state.index, state.target_id,
+                                                                            state.turn_until, state.last_t))
     ticks = np.asarray(state.tick)
-    rows = []
-    for i, (t, checkpoints) in new.items():
-        if checkpoints is None:
-            status[i] = TRAPPED
-            continue
-        rows.append((i, t))
-        index[i], target_id[i], turn_until[i] = 0, target_id[i] + 1, t + config.turn_s
-        status[i] = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
     when, at = np.zeros(len(runs), bool), np.zeros(len(runs), np.float32)
-    for i, t in rows:
+    for i, (t, event, checkpoints) in new.items():
+        if checkpoints is None:
+            status[i] = NO_ROUTE if event else TRAPPED
+            continue
         when[i], at[i] = True, t
+        index[i], target_id[i] = 0, target_id[i] + 1
+        if event:
+            last_t[i] = t  # the tick at t runs next, on the new plan, and does not replan again
+        else:
+            turn_until[i] = t + config.turn_s
+        status[i] = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
     monitor = jaxmonitor.reset(state.monitor, jnp.asarray(at), jnp.asarray(when))
     may = routes.may_recover.copy()
     for r_i, r in enumerate(runs):
         may[r_i] = config.recover and r.recoveries < config.max_recoveries
     routes = routes._replace(may_recover=may)
     state = state._replace(status=jnp.asarray(status), index=jnp.asarray(index), target_id=jnp.asarray(target_id),
-                           turn_until=jnp.asarray(turn_until, jnp.float32), monitor=monitor)
+                           turn_until=jnp.asarray(turn_until, jnp.float32), last_t=jnp.asarray(last_t, jnp.float32),
+                           monitor=monitor)
     return routes, state
 
 
 def _grown(sight: Scene, runs: list, changed: list) -> Scene:
     """The batch's ``sight`` with the maps of the ``changed`` runs made again; every run's again, to a larger
     shape, when one of them no longer fits."""
-    shape = (sight.cap_a.shape[1], sight.poly_v.shape[1], sight.poly_v.shape[2])
+    shape = shape_of(sight)
     try:
-        rows = {i: scene_of(_sight_world(runs[i].known), shape) for i in changed}
+        rows = {i: scene_of(_sight_world(runs[i].known, runs[i].map_t), shape) for i in changed}
     except ValueError:  # recovery's discs outgrew the padding
-        return _scenes([_sight_world(r.known) for r in runs], ROOM)
+        return _scenes([_sight_world(r.known, r.map_t) for r in runs], ROOM)
     leaves = [np.array(a) for a in sight]
     for i, scene in rows.items():
         for leaf, row in zip(leaves, scene):

@@ -180,7 +180,7 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     engine : {"pymunk", "jax"}, default "pymunk"
         The robot's world: pymunk (the reference, one run at a time on ``workers``), or the JAX engine
         (:mod:`evaluation.jaxrun`: each architecture's runs in one batch in this process, on the devices JAX has;
-        worlds with movers, timed events or a moving goal are refused; docs/guide/jaxworld.md). The results file
+        worlds with a moving goal are refused; docs/guide/jaxworld.md). The results file
         records it: a file of one engine is never resumed with the other.
     progress : bool, default False
         Show a progress bar (runs done, failed, time left) on stderr.

@@ -17,7 +17,8 @@ once on the host (:func:`make_task`, the plan ``ekm run`` starts with), then eve
   there ``settle_s``); **truncated** at the time limit.
 
 Unlike ``ekm run`` (and the pymunk environment) there is no trap monitor and no replanning: a run that is stuck
-stays stuck until the time limit. Noise — slip ξ ~ U(-1, 1) ``(K, 2)`` and IR ξ ~ N(0, 1) ``(m,)`` — is drawn from
+stays stuck until the time limit, and a world whose timed events the planner is told of (``known``: the pymunk
+environment replans on them) is refused in one line. Movers move and unforeseen events fire (``dynamic``). Noise — slip ξ ~ U(-1, 1) ``(K, 2)`` and IR ξ ~ N(0, 1) ``(m,)`` — is drawn from
 the state's PRNG key each tick.
 """
 
@@ -31,9 +32,10 @@ import jax.numpy as jnp
 import numpy as np
 
 from robots import kinematics
-from robots.jaxworld import engine
+from robots.jaxworld import engine, moving
 from robots.jaxworld.collide import clearance, gaps
-from robots.jaxworld.scene import Scene, refuse_unsimulated, scene_of
+from ekm.errors import InputError
+from robots.jaxworld.scene import Scene, has_dynamics, refuse_unsimulated, scene_of
 from robots.params import KHEPERA, RobotParams, SensorSet
 from robots.sensors import ir_readings
 
@@ -43,7 +45,8 @@ PROGRESS, COLLISION, TIME, GOAL = 10.0, 1.0, 0.01, 10.0  # ekm.gym's reward term
 @dataclass(frozen=True)
 class TaskConfig:
     """What does not change from run to run (static under ``jit``): the robot, its sensors, the period's
-    sub-steps ``n`` and slip draws ``k``, the time limit in ticks, and the scenario's tolerances (m, ticks)."""
+    sub-steps ``n`` and slip draws ``k``, the time limit in ticks, the scenario's tolerances (m, ticks), and
+    whether the world has movers or timed events to step (``dynamic``)."""
 
     params: RobotParams = KHEPERA
     sensors: SensorSet = KHEPERA.long_range
@@ -53,6 +56,7 @@ class TaskConfig:
     tolerance: float = 0.005
     settle_ticks: int = 8  # 1.024 s
     pass_radius: float = 0.1
+    dynamic: bool = False
 
 
 class Task(NamedTuple):
@@ -93,6 +97,11 @@ def make_task(world, config: TaskConfig = TaskConfig(), checkpoints: str = "visi
     from planner import plan
 
     refuse_unsimulated(world)
+    if any(e.known for e in world.events):
+        raise InputError(f"engine jax: world {world.name!r} has timed events the planner is told of, and the JAX "
+                         f"environment does not replan; use the pymunk environment")
+    if has_dynamics(world) and not config.dynamic:
+        raise ValueError(f"world {world.name!r} has movers or timed events: make its task with a dynamic config")
     route = plan(world, t=0.0, checkpoints=checkpoints, padding=config.params.radius).checkpoints
     route = np.asarray(route, np.float32)
     slots = len(route) if slots is None else slots
@@ -106,7 +115,9 @@ def make_task(world, config: TaskConfig = TaskConfig(), checkpoints: str = "visi
                 checkpoints=padded, last=np.int32(len(route) - 1), legs=legs, first=np.int32(0),
                 start_ranges=np.zeros(len(config.sensors.angles), np.float32))
     first = _pass(jnp.asarray(task.start[:2]), jnp.int32(0), task, config)
-    ranges = engine.ranges(jnp.asarray(task.start), task.scene, config.sensors, config.params.radius)
+    fired = engine.reset(task.start, task.scene, config.params).fired  # events due at 0 and clear of the robot
+    ranges = engine.ranges(jnp.asarray(task.start), moving.placed(task.scene, jnp.float32(0.0), fired), config.sensors,
+                           config.params.radius)
     return task._replace(first=np.int32(first), start_ranges=np.asarray(ranges, np.float32))
 
 
@@ -179,7 +190,7 @@ def step(state: TaskState, action, task: Task, config: TaskConfig = TaskConfig()
     stopped = at_goal & (kinematics.is_stop_command(action, p, jnp) | (settled > config.settle_ticks))
     command = jnp.where(stopped, 0.0, jnp.asarray(action, jnp.float32))
     slip = jax.random.uniform(k_slip, (config.k, 2), minval=-1.0, maxval=1.0)
-    eng, trace = engine.step(state.engine, task.scene, command, slip, p, config.n)
+    eng, trace = engine.step(state.engine, task.scene, command, slip, p, config.n, config.dynamic)
     near = jnp.any(jnp.linalg.norm(trace[:, :2] - task.checkpoints[state.index], axis=1) < config.tolerance)
     index = jnp.where(~final & near, state.index + 1, state.index)
     index = _pass(eng.robot.pose[:2], index, task, config)
@@ -188,16 +199,18 @@ def step(state: TaskState, action, task: Task, config: TaskConfig = TaskConfig()
     new = eng.collisions - state.engine.collisions
     reward = PROGRESS * (state.route - route) - COLLISION * new - TIME + jnp.where(stopped & (eng.collisions == 0),
                                                                                     GOAL, 0.0)
-    ir = engine.sense(eng, task.scene, config.sensors, _noise(k_ir, config), p)
+    ir = engine.sense(eng, task.scene, config.sensors, _noise(k_ir, config), p, config.dynamic)
     state = TaskState(eng, index, route, settled, state.tick + 1, key, ir)
     truncated = ~stopped & (state.tick >= config.ticks)
     return state, _observe(state, task, config), reward.astype(jnp.float32), stopped, truncated
 
 
-def config_for(robot: RobotParams = KHEPERA, sensors: str = "long", time_limit: float = 120.0) -> TaskConfig:
-    """The :class:`TaskConfig` of a robot, its ``"long"`` or ``"short"`` IR ring and a time limit (s)."""
+def config_for(robot: RobotParams = KHEPERA, sensors: str = "long", time_limit: float = 120.0,
+               dynamic: bool = False) -> TaskConfig:
+    """The :class:`TaskConfig` of a robot, its ``"long"`` or ``"short"`` IR ring, a time limit (s), and whether the
+    world has movers or timed events."""
     ring = robot.long_range if sensors == "long" else robot.short_range
     n = robot.substeps(robot.avoid_period)
     ticks = int(np.ceil(time_limit / robot.avoid_period - 1e-9))
     return replace(TaskConfig(), params=robot, sensors=ring, n=n, k=robot.noise_shape(robot.avoid_period)[0],
-                   ticks=ticks, settle_ticks=robot.substeps(robot.target_period) // n)
+                   ticks=ticks, settle_ticks=robot.substeps(robot.target_period) // n, dynamic=dynamic)

@@ -104,7 +104,8 @@ def test_bad_input_is_refused_in_one_line():
         KheperaVectorEnv(0)
     with pytest.raises(InputError, match=r"^sensors: must be long or short"):
         KheperaVectorEnv(1, sensors="mid")
-    with pytest.raises(InputError, match=r"^engine jax: world 'three-rooms-moving' has moving obstacles"):
-        KheperaVectorEnv(1, world="three-rooms-moving")
+    with pytest.raises(InputError, match=r"^engine jax: world 'three-rooms-changed' has timed events the planner is "
+                                          r"told of, and the JAX environment does not replan"):
+        KheperaVectorEnv(1, world="three-rooms-changed")
     with pytest.raises(InputError, match=r"^engine jax: world 'moving-target' has a moving goal"):
         KheperaVectorEnv(1, world="moving-target")

@@ -14,6 +14,7 @@ import pytest
 from ekm.errors import InputError
 from robots.body import SLOP
 from robots.jaxworld import engine as jw
+from robots.jaxworld import moving
 from robots.jaxworld.scene import scene_of, stack_scenes
 from robots.params import KHEPERA
 from robots.world import PymunkWorld
@@ -22,8 +23,9 @@ from robots.worldfile import parse_world
 R, DT, TAU, B = KHEPERA.radius, KHEPERA.dt, KHEPERA.motor_tau, KHEPERA.wheel_base
 ZERO = np.zeros((4, 2))
 
-_step = jax.jit(jw.step, static_argnames=("params", "n"))
+_step = jax.jit(jw.step, static_argnames=("params", "n", "dynamic"))
 _ranges = jax.jit(jw.ranges, static_argnames=("sensors", "radius"))
+_placed = jax.jit(moving.placed)
 
 
 class PymunkEngine:
@@ -44,17 +46,20 @@ class PymunkEngine:
 class JaxEngine:
     def __init__(self, world):
         self.scene = scene_of(world)
+        self.dynamic = bool(world.moving or world.events)
         self.state = jw.reset(np.asarray(world.start), self.scene)
 
     def drive(self, command, noise=ZERO):
-        self.state, _ = _step(self.state, self.scene, jnp.asarray(command, jnp.float32), jnp.asarray(noise))
+        self.state, _ = _step(self.state, self.scene, jnp.asarray(command, jnp.float32), jnp.asarray(noise),
+                              dynamic=self.dynamic)
 
     pose = property(lambda self: np.asarray(self.state.robot.pose, float))
     collisions = property(lambda self: int(self.state.collisions))
     contact_s = property(lambda self: float(self.state.contact_s))
 
     def ranges(self, sensors):
-        return np.asarray(_ranges(self.state.robot.pose, self.scene, sensors), float)
+        scene = _placed(self.scene, jw.time_of(self.state), self.state.fired)
+        return np.asarray(_ranges(self.state.robot.pose, scene, sensors), float)
 
 
 @pytest.fixture(params=[PymunkEngine, JaxEngine], ids=["pymunk", "jax"])
@@ -181,11 +186,76 @@ def test_a_batch_of_different_worlds_steps_as_each_alone():
         assert int(batch.collisions[i]) == sim.collisions == 1
 
 
-def test_worlds_with_movers_are_refused_in_one_line():
+def test_a_world_with_a_moving_goal_is_refused_in_one_line():
     from robots.worldnames import load_world
 
-    with pytest.raises(InputError, match=r"^engine jax: world 'three-rooms-moving' has moving obstacles"):
-        scene_of(load_world("three-rooms-moving"))
+    with pytest.raises(InputError, match=r"^engine jax: world 'moving-target' has a moving goal"):
+        scene_of(load_world("moving-target"))
+
+
+def _pusher(heading=0.0):
+    """A disc of 5 cm radius that sets off from x = 0.3 towards the robot standing at x = 0.5."""
+    return world(start=[0.5, 0.25, heading], moving=[{"shape": {"type": "circle", "radius": 0.05},
+                                                      "path": {"type": "line", "from": [0.3, 0.25], "to": [0.9, 0.25],
+                                                               "speed_mps": 0.05, "bounce": False}}])
+
+
+def test_a_mover_shoves_a_robot_standing_in_its_way(engine):
+    # The disc (5 cm) at 5 cm/s meets the robot (2.5 cm) when its centre reaches 0.5 - 0.075 = 0.425 m, at 2.5 s;
+    # after that it shoves it ahead: at 48 ticks (6.144 s) the disc is at 0.3 + 0.05 * 6.144 = 0.6072 m and the
+    # robot's centre one body-plus-disc ahead, 0.6822 m (within 2 mm: the contact's overlap), on its line; one
+    # contact episode that has lasted since 2.5 s.
+    sim = engine(_pusher())
+    for _ in range(48):
+        sim.drive([0.0, 0.0])
+    assert sim.pose[0] == pytest.approx(0.6822, abs=2e-3)
+    assert sim.pose[1] == pytest.approx(0.25, abs=1e-6)
+    assert sim.collisions == 1
+    assert sim.contact_s == pytest.approx(6.144 - 2.5, abs=0.05)
+
+
+def test_the_ir_sees_a_mover_where_its_path_puts_it(engine):
+    # The robot at x = 0.5 facing -x (pi), the disc coming at it from 0.3 at 5 cm/s: after 8 ticks (1.024 s) the
+    # disc's centre is at 0.3512 m, its near side at 0.4012; the front sensor's ray starts on the robot's surface
+    # at 0.475 and reads 0.475 - 0.4012 = 0.0738 m.
+    sim = engine(_pusher(heading=math.pi))
+    for _ in range(8):
+        sim.drive([0.0, 0.0])
+    front = int(np.argmin(np.abs(np.asarray(KHEPERA.long_range.angles))))
+    assert sim.ranges(KHEPERA.long_range)[front] == pytest.approx(0.0738, abs=1e-4)
+
+
+def test_a_door_that_shuts_stops_the_robot_only_after_its_time(engine):
+    # A 2 cm wide box across the arena at x = 0.6 (its face at 0.59) appears at 6 s. Driven at 0.05 m/s from
+    # x = 0.3 the robot's front would reach 0.59 at (0.59 - 0.325) / 0.05 = 5.3 s: it passes before the door is
+    # there, and is beyond it at 6 s. The same robot sent at the door after 6 s is stopped by it.
+    door = [{"at_s": 6.0, "add": [{"type": "box", "center": [0.6, 0.25], "size": [0.02, 0.5]}], "known": True}]
+    sim = engine(world(events=door))
+    for _ in range(60):  # 7.68 s at 5 cm/s, less the motors' lag: about 0.68 m
+        sim.drive([0.05, 0.05])
+    assert sim.pose[0] > 0.6 + 0.01 + R and sim.collisions == 0
+    back = engine(world(start=[0.3, 0.25, 0.0], events=door))
+    for _ in range(60):
+        back.drive([0.0, 0.0])  # wait until the door is shut
+    for _ in range(60):
+        back.drive([0.16, 0.16])
+    assert back.pose[0] == pytest.approx(0.59 - R, abs=2e-4)
+    assert back.collisions == 1
+
+
+def test_a_door_shut_on_the_robot_waits_until_the_robot_has_left():
+    # The door at x = 0.3 is due at 0.3 s, when the robot driven from there at 0.1 m/s has not gone 3 cm: it
+    # appears only once the robot's body is clear of it (its face at 0.31, the centre beyond 0.335); the robot then
+    # drives on without a collision, and the rear sensor sees the door at its surface's distance from it.
+    door = [{"at_s": 0.3, "add": [{"type": "box", "center": [0.3, 0.25], "size": [0.02, 0.5]}], "known": True}]
+    for make in (PymunkEngine, JaxEngine):
+        sim = make(world(events=door))
+        for _ in range(12):
+            sim.drive([0.1, 0.1])
+        assert sim.collisions == 0 and sim.pose[0] > 0.4, make.__name__
+        back = int(np.argmax(np.abs(np.asarray(KHEPERA.long_range.angles))))
+        reading = sim.ranges(KHEPERA.long_range)[back]
+        assert reading == pytest.approx(sim.pose[0] - R - 0.31, abs=1e-4), make.__name__
 
 
 @pytest.mark.parametrize("name", ["three-rooms", "concave-obstacle"])
