@@ -33,8 +33,9 @@ tick — the same distributions as the pymunk world's NumPy streams, not the sam
 Worlds with movers or timed events run in batches of their own (:func:`run_batch` groups them), stepped with
 ``dynamic`` (:func:`robots.jaxworld.engine.step`), their markers padded to a power of two rows (a padding marker
 stands still far away, :data:`robots.jaxworld.moving.FAR`), so that batches of still worlds pay nothing for movers
-and a handful of shapes serves every mover count. Worlds with a moving goal are refused
-(:func:`robots.jaxworld.scene.refuse_unsimulated`).
+and a handful of shapes serves every mover count. A moving goal (Samba's scenario) is chased as the pymunk runner
+chases it: the goal's place at each tick is the controller's target (with its velocity), and a sub-step that
+brings the robot's centre within the capture radius of where the goal then is catches it.
 """
 
 from __future__ import annotations
@@ -54,14 +55,14 @@ from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_pl
 from robots import kinematics
 from robots.controllers.base import Observation
 from robots.jaxworld import engine, moving
-from robots.jaxworld.scene import Scene, has_dynamics, refuse_unsimulated, scene_of, shape_of, sizes, stack
+from robots.jaxworld.scene import Paths, Scene, has_dynamics, paths_of, scene_of, shape_of, sizes, stack
 from robots.jaxworld.task import sees, sees_next, sight_need
 from robots.params import RobotParams, SensorSet
 
 #: A run's status: ticking, waiting for the host to replan (recovery, or a known event), or ended — and how.
-RUNNING, WAITING, EVENT, ARRIVED, TRAPPED, TIMEOUT, NO_ROUTE = 0, 1, 2, 3, 4, 5, 6
+RUNNING, WAITING, EVENT, ARRIVED, TRAPPED, TIMEOUT, NO_ROUTE, CAUGHT = 0, 1, 2, 3, 4, 5, 6, 7
 ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit",
-         NO_ROUTE: "no route after a change of the map"}
+         NO_ROUTE: "no route after a change of the map", CAUGHT: "caught the moving goal"}
 
 #: Runs stepped together as one ``vmap`` (the blocks of :func:`advance`).
 BLOCK = 16
@@ -75,7 +76,8 @@ class Setup:
     """What every run of a batch shares (static under ``jit``): the robot and its IR ring, the period's sub-steps
     ``n`` and slip draws ``k``, the scenario's rules (:class:`~evaluation.scenario.ScenarioConfig`), the trap
     monitor's, and the controller's step as :func:`~evaluation.scenario.split_step` splits it (``func``,
-    ``static``); whether the worlds have movers or timed events (``dynamic``) and the markers' rows (``markers``)."""
+    ``static``); whether the worlds have movers or timed events (``dynamic``), the markers' rows (``markers``),
+    and whether their goals move (``chase``)."""
 
     params: RobotParams
     sensors: SensorSet
@@ -87,6 +89,7 @@ class Setup:
     static: tuple
     dynamic: bool = False
     markers: int = 0
+    chase: bool = False
 
     @property
     def visible(self) -> bool:
@@ -98,7 +101,8 @@ class Route(NamedTuple):
     """One run's arrays that the host sets (a leading batch axis in a batch): ``scene`` every shape of its world,
     ``sight`` the planner's map (known shapes and what recovery added), ``checkpoints`` ``(K, 2)`` (goal at
     ``last``, padded by repeating it), ``ticks`` its time limit in ticks, ``may_recover`` whether a trap waits for a
-    new plan (else it ends the run), ``radii`` ``(M,)`` the markers' radii of its movers (-1: padding)."""
+    new plan (else it ends the run), ``radii`` ``(M,)`` the markers' radii of its movers (-1: padding),
+    ``goal_path`` the path of its goal if it moves (:class:`~robots.jaxworld.scene.Paths` of one row)."""
 
     scene: Scene
     sight: Scene
@@ -107,6 +111,7 @@ class Route(NamedTuple):
     ticks: Any
     may_recover: Any
     radii: Any
+    goal_path: Paths
 
 
 class RunState(NamedTuple):
@@ -137,7 +142,7 @@ class TickOut(NamedTuple):
     """What one tick leaves for the record: ``live`` (the run was ticking), the ``pose`` ``(3,)`` and ``ir``
     ``(m,)`` it sensed, the ``command`` ``(2,)`` sent and whether it was the architecture's or recovery's
     (``commanded``; not on the stop at the goal), the sub-step ``trace`` ``(n, 3)``, contact episodes so far, the
-    ``markers`` ``(k, 5)`` it was given."""
+    ``markers`` ``(k, 5)`` it was given and the ``goal`` ``(2,)`` it headed for."""
 
     live: Any
     pose: Any
@@ -147,6 +152,7 @@ class TickOut(NamedTuple):
     trace: Any
     collisions: Any
     markers: Any
+    goal: Any
 
 
 def _where(flag, new, old):
@@ -191,20 +197,24 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
     target_id = state.target_id + passed
     final = index == route.last
     goal = route.checkpoints[index]
+    velocity = jnp.zeros(2, jnp.float32)
+    if setup.chase:  # the goal where it is now, and its velocity
+        goal = jnp.where(final, moving.positions(route.goal_path, t)[0], goal)
+        velocity = jnp.where(final, moving.velocities(route.goal_path, t)[0], velocity).astype(jnp.float32)
 
     noise = jax.random.normal(k_ir, (len(setup.sensors.angles),))
     ir = engine.sense(state.engine, scene, setup.sensors, noise, p, dynamic)
     target = kinematics.egocentric(pose, goal, xp=jnp)
     markers = moving.markers(scene, t, route.radii)[:setup.markers] if dynamic else jnp.zeros((0, 5), jnp.float32)
     obs = Observation(t=t, ir=ir.astype(jnp.float32), target=target.astype(jnp.float32), target_id=target_id,
-                      final=final, pose=pose, target_velocity=jnp.zeros(2, jnp.float32), markers=markers)
+                      final=final, pose=pose, target_velocity=velocity, markers=markers)
     turning = (t < state.turn_until) & (jnp.abs(target[0]) > config.turn_tolerance)
     control, wanted = setup.func(state.control, obs, **arrays, **dict(setup.static))
     control = _where(turning, state.control, control)
     command = jnp.where(turning, turn_on_the_spot(target[0], p, jnp), jnp.asarray(wanted, jnp.float32))
     turn_until = jnp.where(turning, state.turn_until, 0.0)
 
-    inside = final & (jnp.linalg.norm(pos - goal) < config.checkpoint_tolerance)
+    inside = final & (jnp.linalg.norm(pos - goal) < config.checkpoint_tolerance) & (not setup.chase)
     since = jnp.where(inside & state.settled, state.since, t)
     stop = inside & (kinematics.is_stop_command(command, p, jnp) | (t - since >= config.settle_s - 1e-9))
 
@@ -213,22 +223,33 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
     t_end = eng.k.astype(jnp.float32) * p.dt
     near = ~stop & ~final & jnp.any(jnp.linalg.norm(trace[:, :2] - goal, axis=1) < config.checkpoint_tolerance)
     index = index + near
+    heading_for = route.checkpoints[index]
+    caught, caught_t = jnp.bool_(False), t
+    if setup.chase:  # a sub-step within the capture radius of where the goal is then catches it
+        sub_t = t + p.dt * jnp.arange(1, setup.n + 1, dtype=jnp.float32)
+        goals = jax.vmap(lambda s: moving.positions(route.goal_path, s)[0])(sub_t)
+        hit = jnp.linalg.norm(trace[:, :2] - goals, axis=1) < (p.radius if config.capture_radius is None
+                                                                else config.capture_radius)
+        caught, caught_t = final & jnp.any(hit), sub_t[jnp.argmax(hit)]
+        heading_for = jnp.where(final, moving.positions(route.goal_path, t_end)[0], heading_for)
     monitor = jaxmonitor.reset(monitor, t_end, near)
-    watched, trapped = jaxmonitor.update(monitor, t_end, jnp.linalg.norm(eng.robot.pose[:2] - route.checkpoints[index]),
+    watched, trapped = jaxmonitor.update(monitor, t_end, jnp.linalg.norm(eng.robot.pose[:2] - heading_for),
                                          eng.robot.pose[:2], setup.rule)
-    watch = ~stop & ~near
+    watch = ~stop & ~near & ~caught
     monitor = _where(watch, watched, monitor)
     trapped = watch & trapped
-    status = jnp.where(stop, ARRIVED, jnp.where(trapped, jnp.where(route.may_recover, WAITING, TRAPPED), RUNNING))
+    status = jnp.where(stop, ARRIVED, jnp.where(caught, CAUGHT, jnp.where(trapped, jnp.where(route.may_recover,
+                                                                                             WAITING, TRAPPED), RUNNING)))
     ticks = state.tick + 1
     status = jnp.where((status == RUNNING) & (ticks >= route.ticks), TIMEOUT, status).astype(jnp.int32)
 
     new = RunState(engine=eng, control=control, key=key, tick=ticks, index=index, target_id=target_id + near,
                    settled=inside, since=since, turn_until=turn_until, monitor=monitor, status=status,
-                   passed=state.passed + passed + near + stop, stop_t=jnp.where(stop, t, state.stop_t), last_t=t)
+                   passed=state.passed + passed + near + stop + caught,
+                   stop_t=jnp.where(stop, t, jnp.where(caught, caught_t, state.stop_t)), last_t=t)
     live = (state.status == RUNNING) & ~changed
     out = TickOut(live=live, pose=pose, ir=ir, command=command, commanded=~stop, trace=trace,
-                  collisions=eng.collisions, markers=markers)
+                  collisions=eng.collisions, markers=markers, goal=goal)
     held = state._replace(status=jnp.where((state.status == RUNNING) & changed, EVENT, state.status).astype(jnp.int32))
     return _where(live, new, held), out
 
@@ -325,7 +346,6 @@ def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
     the engine does not simulate, a start the robot does not fit or no route)."""
     from planner.checkpoints import path_length
 
-    refuse_unsimulated(world)
     robot = body.robot
     current = first_plan(world, robot, config)
     rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
@@ -348,6 +368,8 @@ def _taken(run: Run, outs: TickOut, i: int, setup: Setup) -> None:
     poses, irs, commands = outs.pose[i, live].astype(float), outs.ir[i, live].astype(float), outs.command[i, live]
     commanded, collisions = outs.commanded[i, live], outs.collisions[i, live]
     markers = outs.markers[i, live, :len(run.world.moving)]  # the world's own rows, as the pymunk runner keeps them
+    if run.world.moving_goal:
+        run.rec.goal_path = np.vstack([run.rec.goal_path, outs.goal[i, live].astype(float)])
     for j in np.flatnonzero(np.isfinite(irs).any(axis=1)):
         run.sensed.append((starts[j], poses[j], irs[j], markers[j]))
     run.rec.commands.extend((starts[j], float(commands[j, 0]), float(commands[j, 1]))
@@ -368,7 +390,7 @@ def finish_run(run: Run, status: int, state: RunState) -> RunRecord:
     traces as :func:`evaluation.scenario.finish` measures it, the controller's state its ``final_state``."""
     rec = run.rec
     rec.ended = run.trapped_why if status == TRAPPED else ENDED[status]
-    rec.arrived, rec.trapped = status == ARRIVED, status == TRAPPED
+    rec.arrived, rec.trapped = status in (ARRIVED, CAUGHT), status == TRAPPED
     rec.replans, rec.recoveries = run.replans, run.recoveries
     rec.poses, rec.times = np.asarray(run.poses), np.asarray(run.times)
     rec.time_s = float(state.stop_t) if rec.arrived else float(rec.times[-1])
@@ -425,10 +447,11 @@ def setup_for(body, func, static, config: ScenarioConfig) -> Setup:
 MIN_MARKERS = 4
 
 
-def kind(world) -> tuple[bool, int]:
-    """The batch a world runs in: whether it has movers or timed events, and its markers' rows (its movers rounded
-    up to a power of two, at least :data:`MIN_MARKERS`; 0 without movers)."""
-    return has_dynamics(world), (max(MIN_MARKERS, _bucket(len(world.moving))) if world.moving else 0)
+def kind(world) -> tuple[bool, int, bool]:
+    """The batch a world runs in: whether it has movers or timed events, its markers' rows (its movers rounded
+    up to a power of two, at least :data:`MIN_MARKERS`; 0 without movers), and whether its goal moves."""
+    return (has_dynamics(world), (max(MIN_MARKERS, _bucket(len(world.moving))) if world.moving else 0),
+            world.moving_goal)
 
 
 def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int = CHUNK_TICKS,
@@ -441,10 +464,15 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
     groups: dict = {}
     for i, r in enumerate(runs):
         groups.setdefault(kind(r.world), []).append(i)
-    for (dynamic, rows), members in sorted(groups.items()):
+    for (dynamic, rows, chase), members in sorted(groups.items()):
         _run_group([runs[i] for i in members], [controls[i] for i in members], [arrays[i] for i in members],
-                   replace(setup, dynamic=dynamic, markers=rows),
+                   replace(setup, dynamic=dynamic, markers=rows, chase=chase),
                    lambda k, rec, members=members: on_done(members[k], rec), chunk_ticks, between)
+
+
+def stack_paths(paths: list) -> Paths:
+    """:class:`~robots.jaxworld.scene.Paths` of one shape stacked: a leading axis ``(B, ...)`` on every leaf."""
+    return Paths(*(np.stack(leaves) for leaves in zip(*paths)))
 
 
 def _radii(world, m: int) -> np.ndarray:
@@ -474,7 +502,8 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
                    checkpoints=_padded(cps, _bucket(max(len(c) for c in cps) + (SLOTS if may else 0))),
                    last=np.array([len(c) - 1 for c in cps], np.int32),
                    ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may),
-                   radii=np.stack([_radii(r.world, m) for r in slots]))
+                   radii=np.stack([_radii(r.world, m) for r in slots]),
+                   goal_path=stack_paths([paths_of([r.world.goal] if r.world.moving_goal else [], 1) for r in slots]))
     starts = jnp.asarray(np.stack([r.world.start for r in slots]), jnp.float32)
     eng = jax.vmap(partial(engine.reset, params=setup.params))(starts, jax.tree.map(jnp.asarray, routes.scene))
     stack = partial(jax.tree.map, lambda *a: jnp.stack(a))

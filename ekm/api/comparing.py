@@ -180,7 +180,7 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
     engine : {"pymunk", "jax"}, default "pymunk"
         The robot's world: pymunk (the reference, one run at a time on ``workers``), or the JAX engine
         (:mod:`evaluation.jaxrun`: each architecture's runs in one batch in this process, on the devices JAX has;
-        worlds with a moving goal are refused; docs/guide/jaxworld.md). The results file
+        docs/guide/jaxworld.md). The results file
         records it: a file of one engine is never resumed with the other.
     progress : bool, default False
         Show a progress bar (runs done, failed, time left) on stderr.
@@ -250,11 +250,6 @@ def compare(worlds=(), architectures="fusion,fields,samba,schema", *, suite=None
         learning = spell_learning(parse_learning(learn))
         if not any(s.uses_map for s in specs):
             raise InputError("--learn: none of the architectures drives a map, so none has anything to learn")
-    if engine == "jax":
-        from robots.jaxworld.scene import refuse_unsimulated
-
-        for w in names:  # every world, before any run: one line for the first the engine cannot simulate
-            refuse_unsimulated(load_world(w))
     job_list = jobs(names, specs, trials, seed, config, map_path, keep_paths=True, robot=robot, learn=learning,
                     engine=engine)
     settings = json.loads(json.dumps({  # as the results file holds them (tuples become lists)

@@ -198,7 +198,7 @@ def run(world, architecture: str, *, maps=None, trial: int | None = None, sensor
         batch).
     engine : {"pymunk", "jax"}, default "pymunk"
         The robot's world: pymunk (the reference) or the JAX engine (:mod:`evaluation.jaxrun`, a batch of one;
-        worlds with a moving goal are refused). The record is the same kind either way;
+        docs/guide/jaxworld.md). The record is the same kind either way;
         the JAX run keeps no checkpoint, trap or IR-hit log, so its plot marks none.
 
     Returns

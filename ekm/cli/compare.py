@@ -35,7 +35,7 @@ def add_parser(sub) -> None:
     p.add_argument("--map", metavar="MAP.npz", help="map for the EKM architectures (default: their shipped maps)")
     p.add_argument("--engine", choices=("pymunk", "jax"), default="pymunk",
                    help="the robot's world: pymunk (default, the reference) or jax (each architecture's runs in one "
-                        "batch in this process; no moving goals; docs/guide/jaxworld.md)")
+                        "batch in this process; docs/guide/jaxworld.md)")
     add_scenario_options(p)
     add_robot_options(p, "; every run starts from the same map")
     add_batch_options(p, "run", "finish the comparison of this results file (the same arguments as the one that made "

@@ -60,7 +60,7 @@ def add_parser(sub) -> None:
     p.add_argument("--trial", type=nonneg_int, metavar="K", help="which trial of the map drives (default: seed %% trials)")
     p.add_argument("--seed", type=nonneg_int, default=0, help="noise seed of the run (default 0)")
     p.add_argument("--engine", choices=("pymunk", "jax"), default="pymunk",
-                   help="the robot's world: pymunk (default, the reference) or jax (the JAX engine; no moving goals; "
+                   help="the robot's world: pymunk (default, the reference) or jax (the JAX engine; "
                         "its plot marks no checkpoints, traps or IR hits; docs/guide/jaxworld.md)")
     p.add_argument("--plot", metavar="PNG|SVG|PDF", help="draw the run to scale (Fig. 6.3-6.8)")
     p.add_argument("--gif", metavar="GIF", help="animate the run")

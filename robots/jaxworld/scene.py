@@ -16,8 +16,8 @@ the index of the mover that carries them (``cap_mover``, ``poly_mover``), its pa
 a line, there and back or once, or a circle, as :class:`~robots.worldfile.LinePath` and
 :class:`~robots.worldfile.CirclePath` hold them); an event's shapes carry the index of their event (``cap_event``,
 ``poly_event``) and its time (``event_at``) and whether the planner is told (``event_known``).
-:mod:`robots.jaxworld.moving` places them at a time. A moving goal is not represented: :func:`scene_of` refuses
-a world that has one (:class:`ekm.errors.InputError`, one line); run it on the pymunk engine.
+:mod:`robots.jaxworld.moving` places them at a time. A moving goal is the task's, not the scene's (its path as
+:class:`Paths`, :func:`paths_of`).
 """
 
 from __future__ import annotations
@@ -26,7 +26,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ekm.errors import InputError
 from robots.geometry import Box, Circle, Polygon, Segment, signed_area
 from robots.worldfile import World
 
@@ -68,19 +67,19 @@ class Scene(NamedTuple):
     event_known: object
 
 
-def unsimulated(world: World) -> list[str]:
-    """What ``world`` has that the JAX engine does not simulate: "a moving goal" (empty: it runs)."""
-    return ["a moving goal"] if world.moving_goal else []
+class Paths(NamedTuple):
+    """Paths as arrays ``(M,)`` — the movers' (a :class:`Scene`'s ``path_*`` fields) or a moving goal's — which
+    :func:`robots.jaxworld.moving.positions` reads: ``path_circle`` (else a line), ``path_a`` ``(M, 2)`` the line's
+    start or the circle's centre, ``path_b`` ``(M, 2)`` the line's end, ``path_rate`` the line's speed (m/s) or the
+    circle's signed turn rate (rad/s), ``path_bounce``, ``path_radius``, ``path_phase`` (rad)."""
 
-
-def refuse_unsimulated(world: World) -> None:
-    """Raise :class:`InputError` — one line naming the world and all it has that the engine does not simulate —
-    unless :func:`unsimulated` is empty."""
-    what = unsimulated(world)
-    if what:
-        listed = what[0] if len(what) == 1 else ", ".join(what[:-1]) + " and " + what[-1]
-        raise InputError(f"engine jax: world {world.name!r} has {listed}, which the JAX engine does not simulate; "
-                         f"use the pymunk engine")
+    path_circle: object
+    path_a: object
+    path_b: object
+    path_rate: object
+    path_bounce: object
+    path_radius: object
+    path_phase: object
 
 
 def _pieces(shape, mover: int, event: int, caps: list, polys: list) -> None:
@@ -104,7 +103,6 @@ def _pieces(shape, mover: int, event: int, caps: list, polys: list) -> None:
 def primitives(world: World) -> tuple[list, list]:
     """The world's capsules ``[(a, b, r, mover, event)]`` and convex polygons ``[(vertices (k, 2) ccw, mover,
     event)]``, pymunk's shapes: the still ones (mover and event -1), each mover's around its origin, each event's."""
-    refuse_unsimulated(world)
     half = 0.5 * world.wall_thickness
     caps = [(w.start, w.end, half, -1, -1) for w in world.border + world.walls]
     polys: list = []
@@ -126,21 +124,21 @@ def sizes(world: World) -> tuple[int, int, int, int, int]:
             max(1, len(world.moving)), max(1, len(world.events)))
 
 
-def _paths(world: World, m: int) -> tuple:
-    """The movers' paths as the :class:`Scene`'s ``path_*`` arrays, padded to ``m`` (padding stands at the origin)."""
+def paths_of(paths, m: int) -> Paths:
+    """``paths`` (:class:`~robots.worldfile.LinePath`, :class:`~robots.worldfile.CirclePath`) as :class:`Paths`
+    arrays, padded to ``m`` (padding stands at the origin)."""
     from robots.worldfile import CirclePath
 
     circle, a, b = np.zeros(m, bool), np.zeros((m, 2), np.float32), np.zeros((m, 2), np.float32)
     rate, bounce = np.zeros(m, np.float32), np.zeros(m, bool)
     radius, phase = np.zeros(m, np.float32), np.zeros(m, np.float32)
-    for i, mover in enumerate(world.moving):
-        path = mover.path
+    for i, path in enumerate(paths):
         if isinstance(path, CirclePath):
             circle[i], a[i], radius[i], phase[i] = True, path.center, path.radius, path.phase
             rate[i] = (1.0 if path.direction == "ccw" else -1.0) * 2.0 * np.pi / path.period_s
         else:
             a[i], b[i], rate[i], bounce[i] = path.start, path.end, path.speed_mps, path.bounce
-    return circle, a, b, rate, bounce, radius, phase
+    return Paths(circle, a, b, rate, bounce, radius, phase)
 
 
 def scene_of(world: World, shape: tuple | None = None) -> Scene:
@@ -167,7 +165,7 @@ def scene_of(world: World, shape: tuple | None = None) -> Scene:
     for i, ev in enumerate(world.events):
         event_at[i], event_known[i] = ev.at_s, ev.known
     return Scene(cap_a, cap_b, cap_r, cap_on, poly_v, edge_on, cap_mover, poly_mover, cap_event, poly_event,
-                 *_paths(world, m), event_at, event_known)
+                 *paths_of([mv.path for mv in world.moving], m), event_at, event_known)
 
 
 def stack(scenes) -> Scene:

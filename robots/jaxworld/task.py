@@ -18,7 +18,7 @@ once on the host (:func:`make_task`, the plan ``ekm run`` starts with), then eve
 
 Unlike ``ekm run`` (and the pymunk environment) there is no trap monitor and no replanning: a run that is stuck
 stays stuck until the time limit, and a world whose timed events the planner is told of (``known``: the pymunk
-environment replans on them) is refused in one line. Movers move and unforeseen events fire (``dynamic``). Noise — slip ξ ~ U(-1, 1) ``(K, 2)`` and IR ξ ~ N(0, 1) ``(m,)`` — is drawn from
+environment replans on them) or whose goal moves is refused in one line. Movers move and unforeseen events fire (``dynamic``). Noise — slip ξ ~ U(-1, 1) ``(K, 2)`` and IR ξ ~ N(0, 1) ``(m,)`` — is drawn from
 the state's PRNG key each tick.
 """
 
@@ -35,7 +35,7 @@ from robots import kinematics
 from robots.jaxworld import engine, moving
 from robots.jaxworld.collide import clearance, gaps
 from ekm.errors import InputError
-from robots.jaxworld.scene import Scene, has_dynamics, refuse_unsimulated, scene_of
+from robots.jaxworld.scene import Scene, has_dynamics, scene_of
 from robots.params import KHEPERA, RobotParams, SensorSet
 from robots.sensors import ir_readings
 
@@ -96,7 +96,9 @@ def make_task(world, config: TaskConfig = TaskConfig(), checkpoints: str = "visi
 
     from planner import plan
 
-    refuse_unsimulated(world)
+    if world.moving_goal:
+        raise InputError(f"engine jax: world {world.name!r} has a moving goal, which the JAX environment does not "
+                         f"simulate; use the pymunk environment")
     if any(e.known for e in world.events):
         raise InputError(f"engine jax: world {world.name!r} has timed events the planner is told of, and the JAX "
                          f"environment does not replan; use the pymunk environment")

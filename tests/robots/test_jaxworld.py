@@ -11,7 +11,6 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from ekm.errors import InputError
 from robots.body import SLOP
 from robots.jaxworld import engine as jw
 from robots.jaxworld import moving
@@ -184,13 +183,6 @@ def test_a_batch_of_different_worlds_steps_as_each_alone():
     for i, sim in enumerate(alone):
         assert np.asarray(batch.robot.pose[i]) == pytest.approx(sim.pose, abs=1e-6)
         assert int(batch.collisions[i]) == sim.collisions == 1
-
-
-def test_a_world_with_a_moving_goal_is_refused_in_one_line():
-    from robots.worldnames import load_world
-
-    with pytest.raises(InputError, match=r"^engine jax: world 'moving-target' has a moving goal"):
-        scene_of(load_world("moving-target"))
 
 
 def _pusher(heading=0.0):

@@ -48,8 +48,6 @@ def test_bad_input_is_one_line_before_any_run(cli, monkeypatch, argv, message):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["--worlds", "open-arena,moving-target"], "error: engine jax: world 'moving-target' has a moving goal, which "
-                                               "the JAX engine does not simulate; use the pymunk engine\n"),
     (["--worlds", "open-arena", "--workers", "2"], "drop --workers and --scheduler"),
 ])
 def test_the_jax_engine_refuses_what_it_cannot_run_in_one_line_before_any_run(cli, monkeypatch, argv, message):

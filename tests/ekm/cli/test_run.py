@@ -136,8 +136,6 @@ def test_the_jax_engine_drives_the_same_route_and_says_so(capsys):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["--world", "moving-target", "--architecture", "samba", "--engine", "jax"],
-     "engine jax: world 'moving-target' has a moving goal"),
     (["--world", "open-arena", "--architecture", "samba", "--engine", "jax", "--maps-at", "1", "--plot", "x.png"],
      "--maps-at: draws a tick of the pymunk engine's run"),
     (["--world", "open-arena", "--architecture", "samba", "--engine", "gpu"], "--engine"),
