@@ -341,13 +341,19 @@ class Run:
     times: list = field(default_factory=list)
 
 
-def start_run(world, body, seed: int, config: ScenarioConfig, spec: str) -> Run:
-    """A run's host side at t = 0: its first plan and time limit (raises :class:`~ekm.errors.InputError` for a world
-    the engine does not simulate, a start the robot does not fit or no route)."""
+def start_run(world, body, seed: int, config: ScenarioConfig, spec: str, plans: dict | None = None) -> Run:
+    """A run's host side at t = 0: its first plan and time limit (raises :class:`~ekm.errors.InputError` for a start
+    the robot does not fit or no route). ``plans``: first plans already made, by (world, robot, config), kept
+    there — a comparison runs every architecture in the same worlds, and a plan depends on nothing else."""
     from planner.checkpoints import path_length
 
     robot = body.robot
-    current = first_plan(world, robot, config)
+    key = (world, robot, config)
+    current = plans.get(key) if plans is not None else None
+    if current is None:
+        current = first_plan(world, robot, config)
+        if plans is not None:
+            plans[key] = current
     rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
     rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
     limit = time_limit_for(config, path_length(np.asarray(world.start[:2]), current.checkpoints), robot.max_wheel_speed)
@@ -622,6 +628,7 @@ def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ti
     for i, job in enumerate(job_list):
         if records[i] is None:
             groups.setdefault((job.architecture, job.map_path, job.robot, job.learn, job.config, job.added), []).append(i)
+    plans: dict = {}
     for members in groups.values():
         runs, drivers, batch = [], [], []
         for i in members:
@@ -629,7 +636,7 @@ def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ti
             try:
                 d = job_driver(job)
                 world = _world(job.world)
-                runs.append(start_run(world, d.controller, job.seed, job.config, d.controller.spec))
+                runs.append(start_run(world, d.controller, job.seed, job.config, d.controller.spec, plans))
             except Exception as exc:
                 finish(i, failed_record(job, failure(job, exc), world.name if world is not None else None,
                                         world_family(world) if world is not None else None))
@@ -667,7 +674,8 @@ def run_scenarios(runs, controller, config: ScenarioConfig = ScenarioConfig(),
     if parts is None:
         raise InputError(f"engine jax: the step of {controller.name} is not a partial of one function with keywords")
     func, arrays, static = parts
-    started = [start_run(world, controller, seed, config, controller.spec) for world, seed in runs]
+    plans: dict = {}
+    started = [start_run(world, controller, seed, config, controller.spec, plans) for world, seed in runs]
     records: list = [None] * len(started)
     run_batch(started, [controller.init()] * len(started), [arrays] * len(started),
               setup_for(controller, func, static, config), records.__setitem__, chunk_ticks, between=between)

@@ -183,3 +183,19 @@ def test_a_moving_goal_is_caught_when_the_robot_comes_within_its_radius_on_both_
         assert abs(rec.poses[-1, 0] - goal_then) < 0.025 + 0.003  # within the radius at the catch (+ the tick's end)
         assert len(rec.goal_path) == len(rec.commands)  # the goal where it was at every tick
     assert abs(jax_rec.time_s - pymunk_rec.time_s) < 0.1
+
+
+def test_runs_in_the_same_world_share_its_first_plan(monkeypatch):
+    # Planning is the host's work and depends on the world, robot and scenario alone: two architectures' runs in
+    # one world plan it once; another world (or another config) plans again.
+    made = []
+    real = jaxrun.first_plan
+    monkeypatch.setattr(jaxrun, "first_plan", lambda *a: made.append(a[0].name) or real(*a))
+    plans: dict = {}
+    config = ScenarioConfig(time_limit=60.0)
+    first = jaxrun.start_run(DEAD_END, GO, 0, config, "go", plans)
+    second = jaxrun.start_run(DEAD_END, GO, 1, config, "other", plans)
+    jaxrun.start_run(load_world("open-arena"), GO, 0, config, "go", plans)
+    jaxrun.start_run(DEAD_END, GO, 0, ScenarioConfig(time_limit=30.0), "go", plans)
+    assert made == ["dead-end", "open-arena", "dead-end"]
+    assert second.plan is first.plan and second.rec.plans[0].checkpoints is not first.rec.plans[0].checkpoints
