@@ -164,17 +164,17 @@ def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
     ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past; then, on every
     ``look_every``-th tick, the last of the ``look_ahead`` later ones seen from ``pos``."""
     config, radius, cps = setup.config, setup.params.radius, route.checkpoints
+    need = sight_need(pos, route.sight, radius) if setup.visible else None  # once: the map's gaps from pos
 
     def passes(i):
         within = jnp.linalg.norm(pos - cps[i]) < config.checkpoint_tolerance
         if setup.visible:
-            within = within | sees_next(pos, cps, i, route.sight, radius, config.pass_radius)
+            within = within | sees_next(pos, cps, i, route.sight, radius, config.pass_radius, need)
         return (i < route.last) & within
 
     start = index
     index = jax.lax.while_loop(passes, lambda i: i + 1, index)
     if setup.visible and config.look_ahead:
-        need = sight_need(pos, route.sight, radius)
         ahead = jnp.minimum(index + jnp.arange(1, config.look_ahead + 1), route.last)
         seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[ahead])
         later = jnp.max(jnp.where(seen, ahead, index))  # the farthest seen

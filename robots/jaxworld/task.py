@@ -143,20 +143,22 @@ def sees(pos, point, sight: Scene, radius: float, need):
     return clearance(pos, point, sight) - radius >= need
 
 
-def sees_next(pos, checkpoints, index, sight: Scene, radius: float, pass_radius: float):
-    """Within ``pass_radius`` of ``checkpoints[index]`` ``(K, 2)`` and seeing the next one (:func:`sees`): the
-    checkpoint was a corner to get round, and from ``pos`` there is nothing left to get round."""
+def sees_next(pos, checkpoints, index, sight: Scene, radius: float, pass_radius: float, need):
+    """Within ``pass_radius`` of ``checkpoints[index]`` ``(K, 2)`` and seeing the next one (:func:`sees`, with
+    ``need`` the :func:`sight_need` at ``pos``, worked out once for every checkpoint asked about): the checkpoint
+    was a corner to get round, and from ``pos`` there is nothing left to get round."""
     nxt = checkpoints[jnp.minimum(index + 1, checkpoints.shape[0] - 1)]
     near = jnp.linalg.norm(pos - checkpoints[index]) <= pass_radius
-    return near & sees(pos, nxt, sight, radius, sight_need(pos, sight, radius))
+    return near & sees(pos, nxt, sight, radius, need)
 
 
 def _pass(pos, index, task: Task, config: TaskConfig):
     """The checkpoint headed for after those already within reach or seen past (at most two a tick)."""
     radius = config.params.radius
+    need = sight_need(pos, task.sight, radius)
     for _ in range(2):
         within = jnp.linalg.norm(pos - task.checkpoints[index]) < config.tolerance
-        seen = sees_next(pos, task.checkpoints, index, task.sight, radius, config.pass_radius)
+        seen = sees_next(pos, task.checkpoints, index, task.sight, radius, config.pass_radius, need)
         index = jnp.where((index < task.last) & (within | seen), index + 1, index)
     return index
 
