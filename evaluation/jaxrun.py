@@ -476,11 +476,6 @@ def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_do
                    lambda k, rec, members=members: on_done(members[k], rec), chunk_ticks, between)
 
 
-def stack_paths(paths: list) -> Paths:
-    """:class:`~robots.jaxworld.scene.Paths` of one shape stacked: a leading axis ``(B, ...)`` on every leaf."""
-    return Paths(*(np.stack(leaves) for leaves in zip(*paths)))
-
-
 def _radii(world, m: int) -> np.ndarray:
     """The markers' radii ``(m,)`` of ``world``'s movers, -1 for the padding rows."""
     radii = np.full(m, -1.0, np.float32)
@@ -509,19 +504,19 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
                    last=np.array([len(c) - 1 for c in cps], np.int32),
                    ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may),
                    radii=np.stack([_radii(r.world, m) for r in slots]),
-                   goal_path=stack_paths([paths_of([r.world.goal] if r.world.moving_goal else [], 1) for r in slots]))
+                   goal_path=stack([paths_of([r.world.goal] if r.world.moving_goal else [], 1) for r in slots]))
     starts = jnp.asarray(np.stack([r.world.start for r in slots]), jnp.float32)
     eng = jax.vmap(partial(engine.reset, params=setup.params))(starts, jax.tree.map(jnp.asarray, routes.scene))
-    stack = partial(jax.tree.map, lambda *a: jnp.stack(a))
+    joined = partial(jax.tree.map, lambda *a: jnp.stack(a))
     zeros = partial(jnp.zeros, len(slots))
-    state = RunState(engine=eng, control=stack(*controls),
+    state = RunState(engine=eng, control=joined(*controls),
                      key=jax.vmap(jax.random.PRNGKey)(jnp.array([r.seed for r in slots])), tick=zeros(jnp.int32),
                      index=zeros(jnp.int32), target_id=zeros(jnp.int32), settled=zeros(bool),
                      since=zeros(jnp.float32), turn_until=zeros(jnp.float32),
                      monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (len(slots),) + a.shape), jaxmonitor.init(grid)),
                      status=jnp.asarray(np.where(ids >= 0, RUNNING, TIMEOUT), jnp.int32), passed=zeros(jnp.int32),
                      stop_t=zeros(jnp.float32), last_t=zeros(jnp.float32))
-    arrays = stack(*arrays)
+    arrays = joined(*arrays)
     open_ = ids >= 0
     while open_.any():
         state, outs = advance(setup, blk, routes, state, arrays, chunk_ticks)
@@ -598,11 +593,12 @@ def _grown(sight: Scene, runs: list, changed: list) -> Scene:
         rows = {i: scene_of(_sight_world(runs[i].known, runs[i].map_t), shape) for i in changed}
     except ValueError:  # recovery's discs outgrew the padding
         return _scenes([_sight_world(r.known, r.map_t) for r in runs], ROOM)
-    leaves = [np.array(a) for a in sight]
+    leaves, tree = jax.tree.flatten(sight)
+    leaves = [np.array(a) for a in leaves]
     for i, scene in rows.items():
-        for leaf, row in zip(leaves, scene):
+        for leaf, row in zip(leaves, jax.tree.leaves(scene)):
             leaf[i] = row
-    return Scene(*leaves)
+    return jax.tree.unflatten(tree, leaves)
 
 
 def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ticks: int = CHUNK_TICKS) -> list[dict]:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 
-from robots.jaxworld.scene import Scene
+from robots.jaxworld.scene import Paths, Scene
 
 #: Slack (s) on an event's time: a time of ``k dt`` in float32 may land a rounding below the event's.
 EVENT_SLACK = 1e-5
@@ -25,34 +25,34 @@ EVENT_SLACK = 1e-5
 FAR = 1.0e4
 
 
-def _line(scene: Scene, t):
+def _line(paths: Paths, t):
     """Fraction ``s`` along each line path and its direction of travel (+1 out, -1 back, 0 stopped), ``(M,)``."""
-    length = jnp.linalg.norm(scene.path_b - scene.path_a, axis=-1)
-    travelled = scene.path_rate * t / jnp.where(length > 0, length, 1.0)
+    length = jnp.linalg.norm(paths.b - paths.a, axis=-1)
+    travelled = paths.rate * t / jnp.where(length > 0, length, 1.0)
     phase = jnp.mod(travelled, 2.0)
-    s = jnp.where(scene.path_bounce, jnp.where(phase <= 1.0, phase, 2.0 - phase), jnp.minimum(travelled, 1.0))
-    sign = jnp.where(scene.path_bounce, jnp.where(phase <= 1.0, 1.0, -1.0), jnp.where(travelled < 1.0, 1.0, 0.0))
+    s = jnp.where(paths.bounce, jnp.where(phase <= 1.0, phase, 2.0 - phase), jnp.minimum(travelled, 1.0))
+    sign = jnp.where(paths.bounce, jnp.where(phase <= 1.0, 1.0, -1.0), jnp.where(travelled < 1.0, 1.0, 0.0))
     return jnp.where(length > 0, s, 0.0), jnp.where(length > 0, sign, 0.0), length
 
 
-def positions(scene: Scene, t):
-    """Each mover's origin ``(M, 2)`` at time ``t`` (:meth:`robots.worldfile.LinePath.position`,
+def positions(paths: Paths, t):
+    """Each path's point ``(M, 2)`` at time ``t`` (:meth:`robots.worldfile.LinePath.position`,
     :meth:`~robots.worldfile.CirclePath.position`)."""
-    s, _, _ = _line(scene, t)
-    line = scene.path_a + s[:, None] * (scene.path_b - scene.path_a)
-    angle = scene.path_phase + scene.path_rate * t
-    circle = scene.path_a + scene.path_radius[:, None] * jnp.stack([jnp.cos(angle), jnp.sin(angle)], axis=-1)
-    return jnp.where(scene.path_circle[:, None], circle, line)
+    s, _, _ = _line(paths, t)
+    line = paths.a + s[:, None] * (paths.b - paths.a)
+    angle = paths.phase + paths.rate * t
+    circle = paths.a + paths.radius[:, None] * jnp.stack([jnp.cos(angle), jnp.sin(angle)], axis=-1)
+    return jnp.where(paths.circle[:, None], circle, line)
 
 
-def velocities(scene: Scene, t):
-    """Each mover's velocity ``(M, 2)`` (m/s) at time ``t`` (the paths' ``velocity``)."""
-    _, sign, length = _line(scene, t)
-    line = (sign * scene.path_rate / jnp.where(length > 0, length, 1.0))[:, None] * (scene.path_b - scene.path_a)
-    angle = scene.path_phase + scene.path_rate * t
-    w = scene.path_rate * scene.path_radius
+def velocities(paths: Paths, t):
+    """Each path's velocity ``(M, 2)`` (m/s) at time ``t`` (the paths' ``velocity``)."""
+    _, sign, length = _line(paths, t)
+    line = (sign * paths.rate / jnp.where(length > 0, length, 1.0))[:, None] * (paths.b - paths.a)
+    angle = paths.phase + paths.rate * t
+    w = paths.rate * paths.radius
     circle = jnp.stack([-w * jnp.sin(angle), w * jnp.cos(angle)], axis=-1)
-    return jnp.where(scene.path_circle[:, None], circle, line)
+    return jnp.where(paths.circle[:, None], circle, line)
 
 
 def _at(index, values, default):
@@ -69,7 +69,7 @@ def live(scene: Scene, fired):
 
 def moved(scene: Scene, t) -> Scene:
     """``scene`` with every mover's primitives where its path has taken it at ``t`` (events' all kept)."""
-    pos = positions(scene, t)
+    pos = positions(scene.paths, t)
     cap = _at(scene.cap_mover, pos, 0.0)
     poly = _at(scene.poly_mover, pos, 0.0)
     return scene._replace(cap_a=scene.cap_a + cap, cap_b=scene.cap_b + cap, poly_v=scene.poly_v + poly[:, None, :])
@@ -87,7 +87,7 @@ def placed(scene: Scene, t, fired) -> Scene:
 def primitive_velocities(scene: Scene, t0, t1):
     """Each primitive's velocity ``(C + P, 2)`` over ``[t0, t1]``: its mover's displacement over the interval
     divided by it, as a kinematic body is given its velocity in pymunk (0 for a still one)."""
-    v = (positions(scene, t1) - positions(scene, t0)) / (t1 - t0)
+    v = (positions(scene.paths, t1) - positions(scene.paths, t0)) / (t1 - t0)
     return jnp.concatenate([_at(scene.cap_mover, v, 0.0), _at(scene.poly_mover, v, 0.0)])
 
 
@@ -115,7 +115,7 @@ def markers(scene: Scene, t, radii):
     """The declared movers as the controller's object markers ``(M, 5)`` — (x, y, vx, vy, radius), world frame,
     as :func:`evaluation.scenario._markers` makes them, ``radii`` ``(M,)`` their discs' — where a radius is < 0
     (padding, a world with fewer movers than its batch's) a still marker at :data:`FAR` of radius 0."""
-    pos, vel = positions(scene, t), velocities(scene, t)
+    pos, vel = positions(scene.paths, t), velocities(scene.paths, t)
     real = radii >= 0
     rows = jnp.concatenate([pos, vel, jnp.maximum(radii, 0.0)[:, None]], axis=1)
     pad = jnp.concatenate([jnp.full(pos.shape, FAR), jnp.zeros((pos.shape[0], 3))], axis=1)

@@ -12,7 +12,7 @@ Arrays are padded to fixed sizes — ``C`` capsules, ``P`` polygons of ``V`` ver
 different sizes and shapes share one batch (:func:`stack_scenes`) and one compiled program. Lengths in metres.
 
 Moving obstacles and timed events are primitives too, tagged: a mover's shapes are kept around its own origin with
-the index of the mover that carries them (``cap_mover``, ``poly_mover``), its path as padded arrays (``path_*``:
+the index of the mover that carries them (``cap_mover``, ``poly_mover``), its path as padded arrays (``paths``:
 a line, there and back or once, or a circle, as :class:`~robots.worldfile.LinePath` and
 :class:`~robots.worldfile.CirclePath` hold them); an event's shapes carry the index of their event (``cap_event``,
 ``poly_event``) and its time (``event_at``) and whether the planner is told (``event_known``).
@@ -24,10 +24,26 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import jax
 import numpy as np
 
 from robots.geometry import Box, Circle, Polygon, Segment, signed_area
 from robots.worldfile import World
+
+
+class Paths(NamedTuple):
+    """Paths as arrays ``(M,)`` — the movers' (a :class:`Scene`'s ``paths``) or a moving goal's — which
+    :func:`robots.jaxworld.moving.positions` reads: ``circle`` (else a line), ``a`` ``(M, 2)`` the line's start or
+    the circle's centre, ``b`` ``(M, 2)`` the line's end, ``rate`` the line's speed (m/s) or the circle's signed turn
+    rate (rad/s, + counter-clockwise), ``bounce`` (the line back and forth), ``radius``, ``phase`` (rad)."""
+
+    circle: object
+    a: object
+    b: object
+    rate: object
+    bounce: object
+    radius: object
+    phase: object
 
 
 class Scene(NamedTuple):
@@ -40,10 +56,8 @@ class Scene(NamedTuple):
     Movers and events (``M`` paths, ``E`` events, at least one of each, padding inert): ``cap_mover`` ``(C,)``,
     ``poly_mover`` ``(P,)`` int32 — the mover carrying the primitive (its coordinates then around the mover's
     origin), -1 for a still one; ``cap_event``, ``poly_event`` — the event that adds it, -1 for one there from the
-    start. Paths ``(M,)``: ``path_circle`` (else a line), ``path_a`` ``(M, 2)`` the line's start or the circle's
-    centre, ``path_b`` ``(M, 2)`` the line's end, ``path_rate`` the line's speed (m/s) or the circle's signed turn
-    rate (rad/s, + counter-clockwise), ``path_bounce`` (the line back and forth), ``path_radius``, ``path_phase``
-    (rad). Events ``(E,)``: ``event_at`` (s; ``inf`` for padding), ``event_known``.
+    start. ``paths``: the movers' :class:`Paths` ``(M,)``. Events ``(E,)``: ``event_at`` (s; ``inf`` for padding),
+    ``event_known``.
     """
 
     cap_a: object
@@ -56,30 +70,9 @@ class Scene(NamedTuple):
     poly_mover: object
     cap_event: object
     poly_event: object
-    path_circle: object
-    path_a: object
-    path_b: object
-    path_rate: object
-    path_bounce: object
-    path_radius: object
-    path_phase: object
+    paths: Paths
     event_at: object
     event_known: object
-
-
-class Paths(NamedTuple):
-    """Paths as arrays ``(M,)`` — the movers' (a :class:`Scene`'s ``path_*`` fields) or a moving goal's — which
-    :func:`robots.jaxworld.moving.positions` reads: ``path_circle`` (else a line), ``path_a`` ``(M, 2)`` the line's
-    start or the circle's centre, ``path_b`` ``(M, 2)`` the line's end, ``path_rate`` the line's speed (m/s) or the
-    circle's signed turn rate (rad/s), ``path_bounce``, ``path_radius``, ``path_phase`` (rad)."""
-
-    path_circle: object
-    path_a: object
-    path_b: object
-    path_rate: object
-    path_bounce: object
-    path_radius: object
-    path_phase: object
 
 
 def _pieces(shape, mover: int, event: int, caps: list, polys: list) -> None:
@@ -165,12 +158,12 @@ def scene_of(world: World, shape: tuple | None = None) -> Scene:
     for i, ev in enumerate(world.events):
         event_at[i], event_known[i] = ev.at_s, ev.known
     return Scene(cap_a, cap_b, cap_r, cap_on, poly_v, edge_on, cap_mover, poly_mover, cap_event, poly_event,
-                 *paths_of([mv.path for mv in world.moving], m), event_at, event_known)
+                 paths_of([mv.path for mv in world.moving], m), event_at, event_known)
 
 
-def stack(scenes) -> Scene:
-    """Scenes of one shape stacked: every leaf gains a leading axis ``(B, ...)``."""
-    return Scene(*(np.stack(leaves) for leaves in zip(*scenes)))
+def stack(trees):
+    """Scenes (or :class:`Paths`) of one shape stacked: every leaf gains a leading axis ``(B, ...)``."""
+    return jax.tree.map(lambda *leaves: np.stack(leaves), *trees)
 
 
 def stack_scenes(worlds) -> Scene:
@@ -182,7 +175,7 @@ def stack_scenes(worlds) -> Scene:
 
 def shape_of(scene: Scene) -> tuple[int, int, int, int, int]:
     """``(C, P, V, M, E)`` of one (unstacked) scene: the shape :func:`scene_of` pads to."""
-    return (scene.cap_a.shape[-2], scene.poly_v.shape[-3], scene.poly_v.shape[-2], scene.path_a.shape[-2],
+    return (scene.cap_a.shape[-2], scene.poly_v.shape[-3], scene.poly_v.shape[-2], scene.paths.a.shape[-2],
             scene.event_at.shape[-1])
 
 

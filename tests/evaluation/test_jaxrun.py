@@ -102,7 +102,7 @@ def test_a_run_is_the_same_whatever_batch_it_is_in(batch):
     assert np.array_equal(alone.poses, batch[1].poses)
 
 
-@pytest.mark.slow  # 96 runs on each engine, nine batches to compile: 3-10 min
+@pytest.mark.slow  # 96 runs on each engine, nine batches to compile
 def test_the_two_engines_agree_on_success_in_the_named_worlds():
     # docs/guide/jaxworld.md's agreement table, seeds 0-3: per world and architecture the two success rates' 95 %
     # Wilson intervals overlap (at 4 runs they exclude each other only for 0 against 4 reached); every named world,
@@ -142,7 +142,7 @@ def test_a_known_event_replans_at_the_first_tick_after_it_on_both_engines():
         assert len(by_box) and np.all(np.abs(by_box[:, 1] - 0.25) > 0.15)
 
 
-@pytest.mark.slow  # four compilations of the fields' batch: 1-3 min
+@pytest.mark.slow  # four compilations of the fields' batch
 def test_padding_the_movers_markers_changes_no_run(monkeypatch):
     # A batch pads every world's markers to its rows by still markers 10 km away: the fields (whose inputs are the
     # markers' places ahead) drive the same runs, bit for bit, with one row per mover and with eight.
