@@ -106,71 +106,41 @@ def step(state: EngineState, scene: Scene, command, noise, params: RobotParams =
     where they are at t = 0 and events never fire. Returns ``(state, trace)``, ``trace`` ``(n, 3)`` the pose after
     every sub-step, as :meth:`robots.world.PymunkWorld.step` does.
     """
-    if dynamic:
-        return _step_dynamic(state, scene, command, noise, params, n)
-    dt, radius = params.dt, params.radius
-    beta = bias_rate(dt)
-    setpoint = kinematics.quantize_command(jnp.asarray(command, jnp.float32), params, jnp)
-    v, omega, wheels = kinematics.motor_twist(state.robot.wheels, setpoint, jnp.asarray(noise, jnp.float32), n,
-                                              params, jnp)
-    gap0, normal0 = gaps(state.robot.pose[:2], scene)
-
-    def substep(carry, vw):
-        pos, theta, k, touching, last, collisions, contact_s, gap, normal = carry
-        vj, wj = vw
-        overlap = radius - gap
-        vel = _slide(vj * jnp.stack([jnp.cos(theta), jnp.sin(theta)]), overlap, normal)
-        push_out = beta * jnp.maximum(overlap - SLOP, 0.0)
-        pos = pos + vel * dt - jnp.sum(push_out[:, None] * normal, axis=0)
-        theta = theta + wj * dt
-        gap, normal = gaps(pos, scene)
-        now = jnp.any(gap < radius)
-        t = k.astype(jnp.float32) * dt
-        collisions = collisions + (now & ~touching & (t - last >= REJOIN_S - 1e-6)).astype(jnp.int32)
-        contact_s = contact_s + jnp.where(now, jnp.float32(dt), 0.0)
-        last = jnp.where(now, (k + 1).astype(jnp.float32) * dt, last)
-        carry = (pos, theta, k + 1, now, last, collisions, contact_s, gap, normal)
-        return carry, jnp.concatenate([pos, wrap(theta)[None]])
-
-    s = state
-    carry = (s.robot.pose[:2], s.robot.pose[2], s.k, s.touching, s.last_contact, s.collisions, s.contact_s,
-             gap0, normal0)
-    carry, trace = jax.lax.scan(substep, carry, (v, omega))
-    pos, theta, k, touching, last, collisions, contact_s, _, _ = carry
-    robot = RobotState(pose=jnp.concatenate([pos, wrap(theta)[None]]), wheels=wheels)
-    return EngineState(robot, k, touching, last, collisions, contact_s, s.fired), trace
-
-
-def _step_dynamic(state: EngineState, scene: Scene, command, noise, params: RobotParams, n: int):
-    """:func:`step` with the scene's movers and timed events."""
     dt, radius = params.dt, params.radius
     beta = bias_rate(dt)
     max_overlap = (1.0 + params.actuator_noise) * params.max_wheel_speed * dt  # RobotBody.unsqueeze's bound
     setpoint = kinematics.quantize_command(jnp.asarray(command, jnp.float32), params, jnp)
     v, omega, wheels = kinematics.motor_twist(state.robot.wheels, setpoint, jnp.asarray(noise, jnp.float32), n,
                                               params, jnp)
-    still, movers = moving.is_still(scene), moving.has_movers(scene)
-    t0 = state.k.astype(jnp.float32) * dt
-    gap0, normal0 = gaps(state.robot.pose[:2], moving.moved(scene, t0))  # every shape, events' too
+
+    def at(t):  # every shape where it is at t (movers moved; events' shapes all there, masked by ``fired``)
+        return moving.moved(scene, t) if dynamic else scene
+
+    gap0, normal0 = gaps(state.robot.pose[:2], at(state.k.astype(jnp.float32) * dt))
 
     def substep(carry, vw):
         pos, theta, k, touching, last, collisions, contact_s, gap, normal, fired = carry
         vj, wj = vw
         t = k.astype(jnp.float32) * dt
         t1 = (k + 1).astype(jnp.float32) * dt
-        fired = moving.due(scene, t, fired, gap, radius)
-        overlap = radius - jnp.where(moving.live(scene, fired), gap, jnp.inf)
-        other = moving.primitive_velocities(scene, t, t1)
+        other = None
+        if dynamic:
+            fired = moving.due(scene, t, fired, gap, radius)
+            gap = jnp.where(moving.live(scene, fired), gap, jnp.inf)
+            other = moving.primitive_velocities(scene, t, t1)
+        overlap = radius - gap
         vel = _slide(vj * jnp.stack([jnp.cos(theta), jnp.sin(theta)]), overlap, normal, other)
         push_out = beta * jnp.maximum(overlap - SLOP, 0.0)
         pos = pos + vel * dt - jnp.sum(push_out[:, None] * normal, axis=0)
         theta = theta + wj * dt
-        gap, normal = gaps(pos, moving.moved(scene, t1))
-        on = moving.live(scene, fired)
-        squeezed = movers & on & still & (radius - gap > max_overlap)  # pressed into a wall by a mover
-        depth = jnp.where(squeezed, radius - gap - SLOP, 0.0)
-        pos = pos - jnp.sum(depth[:, None] * normal, axis=0)
-        gap = gap + depth  # first order: the other gaps move by less than the slop here
+        gap, normal = gaps(pos, at(t1))
+        on = True
+        if dynamic:
+            on = moving.live(scene, fired)
+            squeezed = moving.has_movers(scene) & on & moving.is_still(scene) & (radius - gap > max_overlap)
+            depth = jnp.where(squeezed, radius - gap - SLOP, 0.0)  # pressed into a wall by a mover: the wall wins
+            pos = pos - jnp.sum(depth[:, None] * normal, axis=0)
+            gap = gap + depth  # first order: the other gaps move by less than the slop here
         now = jnp.any(on & (gap < radius))
         collisions = collisions + (now & ~touching & (t - last >= REJOIN_S - 1e-6)).astype(jnp.int32)
         contact_s = contact_s + jnp.where(now, jnp.float32(dt), 0.0)
