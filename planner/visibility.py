@@ -37,7 +37,7 @@ from typing import NamedTuple
 import numpy as np
 
 from planner.bitmap import FREE, Padded, free_cell_at
-from robots.geometry import Segment, bounds, distance
+from robots.geometry import Circle, Segment, bounds, distance
 
 #: Extra clearance (m) beyond the cushion that checkpoint legs keep where there is room: a little less
 #: than the 1.5 cm each side that an 8 cm doorway leaves the 5 cm robot.
@@ -62,9 +62,12 @@ def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
     p = np.asarray(points, dtype=float)
     table = _table(obstacles)
     out = np.full(p.shape[:-1], np.inf)
-    for k in np.flatnonzero(~table.wall).tolist():
+    for k in np.flatnonzero(~table.wall & ~table.circle).tolist():
         shape, clearance = obstacles[k]
         out = np.minimum(out, distance(p, shape) - clearance)
+    if table.circle.any():
+        flat = p.reshape(-1, 2)
+        out = np.minimum(out, _circles_slack(flat, table.circles[table.circle]).reshape(out.shape))
     if table.wall.any():
         out = np.minimum(out, _walls_slack(p.reshape(-1, 2), table.walls[table.wall]).reshape(out.shape))
     return out
@@ -86,6 +89,23 @@ def _walls_slack(p: np.ndarray, walls: np.ndarray, near: np.ndarray | None = Non
         dx = rx - t * w[:, 2]
         dy = ry - t * w[:, 3]
         s = np.sqrt(dx * dx + dy * dy) - w[:, 5]
+        if near is not None:
+            s = np.where(near[:, k:k + chunk], s, np.inf)
+        out = np.minimum(out, s.min(axis=1))
+    return out
+
+
+def _circles_slack(p: np.ndarray, circles: np.ndarray, near: np.ndarray | None = None) -> np.ndarray:
+    """min over the circles ``circles`` ``(m, 4)`` (rows of :attr:`_Table.circles`) of distance − clearance (m) at
+    the points ``p`` ``(n, 2)``, ``(n,)``; with ``near`` ``(n, m)`` bool, over the circles near each point only. In
+    chunks of at most 2 million point-circle pairs. The arithmetic of :func:`robots.geometry.distance` for a circle, per coordinate."""
+    out = np.full(len(p), np.inf)
+    chunk = max(1, 2_000_000 // max(1, len(p)))
+    for k in range(0, len(circles), chunk):
+        c = circles[k:k + chunk]
+        dx = p[:, 0:1] - c[:, 0]  # (n, m)
+        dy = p[:, 1:2] - c[:, 1]
+        s = np.maximum(np.sqrt(dx * dx + dy * dy) - c[:, 2], 0.0) - c[:, 3]
         if near is not None:
             s = np.where(near[:, k:k + chunk], s, np.inf)
         out = np.minimum(out, s.min(axis=1))
@@ -157,7 +177,9 @@ def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray
                 every: int) -> np.ndarray:
     """Least slack ``(L,)`` (m) over every ``every``-th sample point (and the last) of each leg ``a``–``b`` (as from
     :func:`_legs`), measured to the obstacles near it (inf if none is). The points of all legs are measured against
-    the walls near any of them at once, a wall counting only for the legs it is near; other shapes leg by leg."""
+    the walls near any of them at once, a wall counting only for the legs it is near; the circles (a
+    recovery's sensed points) likewise; each other shape once, at the points of the legs it is near (a shape and a leg
+    at a time was three million calls in the generalisation suite's replans)."""
     fractions = [_fractions(k, every) for k in n]
     counts = [len(f) for f in fractions]
     leg = np.repeat(np.arange(len(n)), counts)
@@ -168,11 +190,14 @@ def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray
     least = np.full(len(p), np.inf)
     if len(walls):
         least = _walls_slack(p, table.walls[walls], near[:, walls][leg])
-    out = np.minimum.reduceat(least, starts)
-    for i, k in zip(*np.nonzero(near & ~table.wall)):
+    circles = np.flatnonzero(near.any(axis=0) & table.circle)
+    if len(circles):
+        least = np.minimum(least, _circles_slack(p, table.circles[circles], near[:, circles][leg]))
+    for k in np.flatnonzero(near.any(axis=0) & ~table.wall & ~table.circle).tolist():
+        rows = near[leg, k]  # the points of the legs this shape is near, all at once
         shape, clearance = obstacles[k]
-        out[i] = min(out[i], float((distance(p[starts[i]:starts[i] + counts[i]].copy(), shape) - clearance).min()))
-    return out
+        least[rows] = np.minimum(least[rows], distance(p[rows], shape) - clearance)
+    return np.minimum.reduceat(least, starts)
 
 
 @functools.lru_cache(maxsize=1024)
@@ -188,11 +213,15 @@ class _Table(NamedTuple):
     """A list of ``k`` padded obstacles as arrays. ``boxes`` ``(4, k)``: their bounding boxes ``x0, y0, x1, y1``
     grown by their clearance + 5 cm (which :func:`_legs` tests); ``wall`` ``(k,)``: whether each is a wall segment;
     ``walls`` ``(k, 6)``: for a segment its start ``(x, y)``, end − start, squared length (1 for a segment of no
-    length, whose end − start is zero) and clearance (zeros for other shapes)."""
+    length, whose end − start is zero) and clearance (zeros for other shapes); ``circle`` ``(k,)``: whether each is a
+    circle; ``circles`` ``(k, 4)``: for a circle its centre ``(x, y)``, radius and clearance (zeros for other shapes) —
+    a recovery's sensed points are hundreds of small circles."""
 
     boxes: np.ndarray
     wall: np.ndarray
     walls: np.ndarray
+    circle: np.ndarray
+    circles: np.ndarray
 
 
 _TABLES: dict = {}
@@ -214,7 +243,10 @@ def _table(obstacles: Sequence[Padded]) -> _Table:
     denom = ab[:, 0] * ab[:, 0] + ab[:, 1] * ab[:, 1]
     clearance = np.array([c for _, c in obstacles], dtype=float)
     walls = np.column_stack([ends[:, 0], ab, np.where(denom > 0, denom, 1.0), np.where(wall, clearance, 0.0)])
-    table = _Table(boxes, wall, walls)
+    circle = np.array([isinstance(s, Circle) for s, _ in obstacles], dtype=bool)
+    circles = np.array([(*s.center, s.radius, c) if isinstance(s, Circle) else (0.0, 0.0, 0.0, 0.0)
+                        for s, c in obstacles], dtype=float).reshape(-1, 4)
+    table = _Table(boxes, wall, walls, circle, circles)
     if len(_TABLES) > 64:
         _TABLES.clear()
     _TABLES[key] = (obstacles, table)
