@@ -68,13 +68,13 @@ def test_slack_is_the_gap_beyond_the_cushion():
 
 def test_slack_to_circles_and_boxes_by_hand():
     """Circles (a recovery's sensed points) and boxes are measured apart from walls: by hand, a point 0.5 m from a
-    circle's centre has slack 0.5 − radius − clearance; a leg passing 0.2 m above the centre, 0.2 − r − c; and a leg
-    near both a circle and a box takes the nearer (the box's edge 3 cm below it)."""
+    circle's centre has slack 0.5 − radius − clearance; a leg passing 8 cm above the centre, 0.08 − r − c; and a leg
+    near both a circle and a box takes the nearer (the box's edge 3 cm above it)."""
     from robots.geometry import Box, Circle
     obstacles = [(Circle((0.0, 0.0), 0.05), 0.01)]
     assert float(slack(np.array([0.3, 0.4]), obstacles)) == pytest.approx(0.5 - 0.05 - 0.01)
     np.testing.assert_allclose(slack(np.array([[0.3, 0.4], [0.0, 0.02], [0.06, 0.0]]), obstacles),
                                [0.44, -0.01, 0.0], atol=1e-12)  # inside the disc: distance 0
-    assert segment_slack((-1.0, 0.2), (1.0, 0.2), obstacles) == pytest.approx(0.2 - 0.05 - 0.01)
-    obstacles = obstacles + [(Box((0.5, 0.12), (0.2, 0.1)), 0.02)]  # top edge at y = 0.17
-    assert segment_slack((-1.0, 0.2), (1.0, 0.2), obstacles) == pytest.approx(0.03 - 0.02)
+    assert segment_slack((-1.0, 0.08), (1.0, 0.08), obstacles) == pytest.approx(0.08 - 0.05 - 0.01)
+    obstacles = obstacles + [(Box((0.5, 0.16), (0.2, 0.1)), 0.02)]  # bottom edge at y = 0.11
+    assert segment_slack((-1.0, 0.08), (1.0, 0.08), obstacles) == pytest.approx(0.03 - 0.02)
