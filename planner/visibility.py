@@ -67,49 +67,45 @@ def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
         out = np.minimum(out, distance(p, shape) - clearance)
     if table.circle.any():
         flat = p.reshape(-1, 2)
-        out = np.minimum(out, _circles_slack(flat, table.circles[table.circle]).reshape(out.shape))
+        out = np.minimum(out, _least(flat, table.circles[table.circle], None, _circle_gaps).reshape(out.shape))
     if table.wall.any():
-        out = np.minimum(out, _walls_slack(p.reshape(-1, 2), table.walls[table.wall]).reshape(out.shape))
+        out = np.minimum(out, _least(p.reshape(-1, 2), table.walls[table.wall], None, _wall_gaps).reshape(out.shape))
     return out
 
 
-def _walls_slack(p: np.ndarray, walls: np.ndarray, near: np.ndarray | None = None) -> np.ndarray:
-    """min over the walls ``walls`` ``(m, 6)`` (rows of :attr:`_Table.walls`) of distance − clearance (m) at the
-    points ``p`` ``(n, 2)``, ``(n,)``; with ``near`` ``(n, m)`` bool, over the walls near each point only. All walls
-    at once, in chunks of at most 2 million point-wall pairs: a large world has hundreds of walls, and one NumPy
-    call a wall cost more than the sums. The arithmetic of :func:`robots.geometry.segment_distance` (t clipped to
-    the wall, 0 on a wall of no length, whose end − start is zero), written out per coordinate."""
+def _least(p: np.ndarray, rows: np.ndarray, near: np.ndarray | None, gaps) -> np.ndarray:
+    """min over the shapes ``rows`` ``(m, ...)`` of ``gaps(p, rows)`` ``(n, m)`` (distance − clearance, m) at the
+    points ``p`` ``(n, 2)``, ``(n,)``; with ``near`` ``(n, m)`` bool, over the shapes near each point only. All
+    shapes at once, in chunks of at most 2 million point-shape pairs: a large world has hundreds of walls and a
+    recovery hundreds of sensed discs, and one NumPy call a shape cost more than the sums."""
     out = np.full(len(p), np.inf)
     chunk = max(1, 2_000_000 // max(1, len(p)))
-    for k in range(0, len(walls), chunk):
-        w = walls[k:k + chunk]
-        rx = p[:, 0:1] - w[:, 0]  # (n, m)
-        ry = p[:, 1:2] - w[:, 1]
-        t = np.minimum(np.maximum((rx * w[:, 2] + ry * w[:, 3]) / w[:, 4], 0.0), 1.0)
-        dx = rx - t * w[:, 2]
-        dy = ry - t * w[:, 3]
-        s = np.sqrt(dx * dx + dy * dy) - w[:, 5]
+    for k in range(0, len(rows), chunk):
+        s = gaps(p, rows[k:k + chunk])
         if near is not None:
             s = np.where(near[:, k:k + chunk], s, np.inf)
         out = np.minimum(out, s.min(axis=1))
     return out
 
 
-def _circles_slack(p: np.ndarray, circles: np.ndarray, near: np.ndarray | None = None) -> np.ndarray:
-    """min over the circles ``circles`` ``(m, 4)`` (rows of :attr:`_Table.circles`) of distance − clearance (m) at
-    the points ``p`` ``(n, 2)``, ``(n,)``; with ``near`` ``(n, m)`` bool, over the circles near each point only. In
-    chunks of at most 2 million point-circle pairs. The arithmetic of :func:`robots.geometry.distance` for a circle, per coordinate."""
-    out = np.full(len(p), np.inf)
-    chunk = max(1, 2_000_000 // max(1, len(p)))
-    for k in range(0, len(circles), chunk):
-        c = circles[k:k + chunk]
-        dx = p[:, 0:1] - c[:, 0]  # (n, m)
-        dy = p[:, 1:2] - c[:, 1]
-        s = np.maximum(np.sqrt(dx * dx + dy * dy) - c[:, 2], 0.0) - c[:, 3]
-        if near is not None:
-            s = np.where(near[:, k:k + chunk], s, np.inf)
-        out = np.minimum(out, s.min(axis=1))
-    return out
+def _wall_gaps(p: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Distance − clearance ``(n, m)`` from the points ``p`` ``(n, 2)`` to the walls ``w`` ``(m, 6)`` (rows of
+    :attr:`_Table.walls`): the arithmetic of :func:`robots.geometry.segment_distance` (t clipped to the wall, 0 on
+    a wall of no length, whose end − start is zero), written out per coordinate."""
+    rx = p[:, 0:1] - w[:, 0]
+    ry = p[:, 1:2] - w[:, 1]
+    t = np.minimum(np.maximum((rx * w[:, 2] + ry * w[:, 3]) / w[:, 4], 0.0), 1.0)
+    dx = rx - t * w[:, 2]
+    dy = ry - t * w[:, 3]
+    return np.sqrt(dx * dx + dy * dy) - w[:, 5]
+
+
+def _circle_gaps(p: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """Distance − clearance ``(n, m)`` from the points ``p`` ``(n, 2)`` to the circles ``c`` ``(m, 4)`` (rows of
+    :attr:`_Table.circles`): the arithmetic of :func:`robots.geometry.distance` for a circle, per coordinate."""
+    dx = p[:, 0:1] - c[:, 0]
+    dy = p[:, 1:2] - c[:, 1]
+    return np.maximum(np.sqrt(dx * dx + dy * dy) - c[:, 2], 0.0) - c[:, 3]
 
 
 def segment_slack(a, b, obstacles: Sequence[Padded], step: float = STEP) -> float:
@@ -189,10 +185,10 @@ def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray
     walls = np.flatnonzero(near.any(axis=0) & table.wall)
     least = np.full(len(p), np.inf)
     if len(walls):
-        least = _walls_slack(p, table.walls[walls], near[:, walls][leg])
+        least = _least(p, table.walls[walls], near[:, walls][leg], _wall_gaps)
     circles = np.flatnonzero(near.any(axis=0) & table.circle)
     if len(circles):
-        least = np.minimum(least, _circles_slack(p, table.circles[circles], near[:, circles][leg]))
+        least = np.minimum(least, _least(p, table.circles[circles], near[:, circles][leg], _circle_gaps))
     for k in np.flatnonzero(near.any(axis=0) & ~table.wall & ~table.circle).tolist():
         rows = near[leg, k]  # the points of the legs this shape is near, all at once
         shape, clearance = obstacles[k]
