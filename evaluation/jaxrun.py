@@ -22,7 +22,9 @@ stays on the host (the imperative shell, :func:`run_batch`): plans are made befo
 chunks of ``chunk_ticks``; between chunks the host takes every waiting run through the pymunk runner's
 recovery — what its IR saw joins the planner's map (:func:`evaluation.scenario.with_sensed`), a new plan from where
 it stands (:func:`evaluation.scenario.replan_from`) — writes the new checkpoints and map into the batch's arrays,
-and the batch goes on. A run that waits loses no simulated time, only the rest of its chunk of wall time.
+and the batch goes on. A run that waits loses no simulated time, only the rest of its chunk of wall time. Batches
+(an architecture's worlds of one :func:`kind`) run :data:`THREADS` at a time (:func:`in_threads`): one compiles or
+plans while another's scan runs; a run's record does not depend on which batch runs beside it.
 
 The records are :class:`~evaluation.scenario.RunRecord`'s, built from every live tick's outputs exactly as the
 pymunk runner builds them (poses at every sub-step, the commands, the plans, contact episodes), so outcomes, motion
@@ -41,6 +43,8 @@ brings the robot's centre within the capture radius of where the goal then is ca
 from __future__ import annotations
 
 import math
+import threading
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field, replace
 from functools import partial
 from typing import Any, NamedTuple
@@ -66,6 +70,9 @@ ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limi
 
 #: Runs stepped together as one ``vmap`` (the blocks of :func:`advance`).
 BLOCK = 16
+
+#: Batches run at once, each in a thread of its own (:func:`in_threads`).
+THREADS = 2
 
 #: Ticks of one chunk of the scan (4.1 s of 0.128 s ticks): how long a run that needs a new plan may wait for it.
 CHUNK_TICKS = 32
@@ -461,19 +468,49 @@ def kind(world) -> tuple[bool, int, bool]:
 
 
 def run_batch(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int = CHUNK_TICKS,
-              between=lambda: None) -> None:
-    """Drive ``runs`` (started by :func:`start_run`) to their ends, in one batch for each :func:`kind` of world:
-    ``controls[i]`` the controller's fresh state and ``arrays[i]`` its step's array keywords
-    (:func:`~evaluation.scenario.split_step`) for run ``i``. ``on_done(i, record)`` receives each run's
-    :class:`RunRecord` as it ends (at the end of the chunk it ended in); ``between()`` is called between chunks
-    (Ctrl-C). The imperative shell of the module docstring."""
+              between=lambda: None, threads: int = THREADS) -> None:
+    """Drive ``runs`` (started by :func:`start_run`) to their ends, in one batch for each :func:`kind` of world
+    (:func:`batches`), ``threads`` of them at once (:func:`in_threads`): ``controls[i]`` the controller's fresh state
+    and ``arrays[i]`` its step's array keywords (:func:`~evaluation.scenario.split_step`) for run ``i``.
+    ``on_done(i, record)`` receives each run's :class:`RunRecord` as it ends (at the end of the chunk it ended in,
+    from the thread of its batch); ``between()`` is called between chunks (Ctrl-C). The imperative shell of the
+    module docstring."""
+    in_threads(batches(runs, controls, arrays, setup, on_done, chunk_ticks, between), threads)
+
+
+def batches(runs: list[Run], controls: list, arrays: list, setup: Setup, on_done, chunk_ticks: int = CHUNK_TICKS,
+            between=lambda: None) -> list:
+    """:func:`run_batch`'s work as one callable for each :func:`kind` of world among ``runs``: each drives its runs
+    to their ends in one batch."""
     groups: dict = {}
     for i, r in enumerate(runs):
         groups.setdefault(kind(r.world), []).append(i)
-    for (dynamic, rows, chase), members in sorted(groups.items()):
-        _run_group([runs[i] for i in members], [controls[i] for i in members], [arrays[i] for i in members],
-                   replace(setup, dynamic=dynamic, markers=rows, chase=chase),
-                   lambda k, rec, members=members: on_done(members[k], rec), chunk_ticks, between)
+    return [partial(_run_group, [runs[i] for i in members], [controls[i] for i in members],
+                    [arrays[i] for i in members], replace(setup, dynamic=dynamic, markers=rows, chase=chase),
+                    lambda k, rec, members=members: on_done(members[k], rec), chunk_ticks, between)
+            for (dynamic, rows, chase), members in sorted(groups.items())]
+
+
+def in_threads(tasks: list, threads: int = THREADS) -> None:
+    """Call each of ``tasks`` (no arguments), ``threads`` at a time, in their order. Once one raises (a
+    KeyboardInterrupt from ``between`` included) none is started any more; when the running ones have returned, the
+    first failed task's exception (in the tasks' order) is raised. Why threads: XLA compiles a program, and runs a
+    scan, without Python's lock, so one batch's compiling (on one core) or host work goes on beside another's scan
+    (the generalisation suite 185 → 152–157 s with two; docs/performance.md)."""
+    if threads <= 1 or len(tasks) <= 1:
+        for task in tasks:
+            task()
+        return
+    with ThreadPoolExecutor(max_workers=threads) as pool:
+        futures = [pool.submit(task) for task in tasks]
+        try:
+            wait(futures, return_when=FIRST_EXCEPTION)
+        finally:  # a task failed, or Ctrl-C here: start no more; the pool's exit waits for the running ones
+            for f in futures:
+                f.cancel()
+    for f in futures:
+        if not f.cancelled():
+            f.result()
 
 
 def _radii(world, m: int) -> np.ndarray:
@@ -614,17 +651,20 @@ def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ti
     records: list = [None] * len(job_list)
     for i, record in (done or {}).items():
         records[i] = record
+    lock = threading.Lock()
 
     def finish(i: int, record: dict) -> None:
-        records[i] = record
-        if on_done:
-            on_done(i, record)
+        with lock:  # batches end runs from their threads
+            records[i] = record
+            if on_done:
+                on_done(i, record)
 
     groups: dict = {}
     for i, job in enumerate(job_list):
         if records[i] is None:
             groups.setdefault((job.architecture, job.map_path, job.robot, job.learn, job.config, job.added), []).append(i)
     plans: dict = {}
+    tasks: list = []
     for members in groups.values():
         runs, drivers, batch = [], [], []
         for i in members:
@@ -649,11 +689,12 @@ def run_jobs(job_list: list, on_done=None, *, done: dict | None = None, chunk_ti
             continue
         setup = setup_for(drivers[0].controller, parts[0][0], parts[0][2], job_list[batch[0]].config)
 
-        def ended(k: int, rec: RunRecord) -> None:
+        def ended(k: int, rec: RunRecord, batch=batch, drivers=drivers) -> None:
             finish(batch[k], job_record(job_list[batch[k]], driven(rec, drivers[k])))
 
-        run_batch(runs, [d.controller.init() for d in drivers], [p[1] for p in parts], setup, ended, chunk_ticks,
-                  between=interrupts.check)
+        tasks += batches(runs, [d.controller.init() for d in drivers], [p[1] for p in parts], setup, ended,
+                         chunk_ticks, between=interrupts.check)
+    in_threads(tasks)
     return records
 
 

@@ -199,3 +199,29 @@ def test_runs_in_the_same_world_share_its_first_plan(monkeypatch):
     jaxrun.start_run(DEAD_END, GO, 0, ScenarioConfig(time_limit=30.0), "go", plans)
     assert made == ["dead-end", "open-arena", "dead-end"]
     assert second.plan is first.plan and second.rec.plans[0].checkpoints is not first.rec.plans[0].checkpoints
+
+
+def test_batches_in_threads_run_every_task_and_stop_starting_them_at_the_first_failure():
+    """Every task runs once with two threads; when one fails, the task running beside it finishes, no task is started
+    after it but the one or two already taken (each queued task sleeps 0.2 s, far longer than the pool takes to
+    notice), and the failure comes out."""
+    import time
+
+    seen: list = []
+    jaxrun.in_threads([partial(seen.append, i) for i in range(7)], threads=2)
+    assert sorted(seen) == list(range(7))
+
+    log: list = []
+
+    def slow():
+        time.sleep(0.3)
+        log.append("slow done")
+
+    def bad():
+        raise ValueError("boom")
+
+    queued = [partial(lambda i: (time.sleep(0.2), log.append(i)), i) for i in range(20)]
+    with pytest.raises(ValueError, match="boom"):
+        jaxrun.in_threads([slow, bad] + queued, threads=2)
+    assert "slow done" in log
+    assert len([x for x in log if isinstance(x, int)]) <= 2
