@@ -496,7 +496,7 @@ def in_threads(tasks: list, threads: int = THREADS) -> None:
     KeyboardInterrupt from ``between`` included) none is started any more; when the running ones have returned, the
     first failed task's exception (in the tasks' order) is raised. Why threads: XLA compiles a program, and runs a
     scan, without Python's lock, so one batch's compiling (on one core) or host work goes on beside another's scan
-    (the generalisation suite 185 → 152–157 s with two; docs/performance.md)."""
+    (measured in docs/performance.md)."""
     if threads <= 1 or len(tasks) <= 1:
         for task in tasks:
             task()

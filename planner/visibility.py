@@ -62,14 +62,12 @@ def slack(points, obstacles: Sequence[Padded]) -> np.ndarray:
     p = np.asarray(points, dtype=float)
     table = _table(obstacles)
     out = np.full(p.shape[:-1], np.inf)
-    for k in np.flatnonzero(~table.wall & ~table.circle).tolist():
+    for k in np.flatnonzero(table.other).tolist():
         shape, clearance = obstacles[k]
         out = np.minimum(out, distance(p, shape) - clearance)
-    if table.circle.any():
-        flat = p.reshape(-1, 2)
-        out = np.minimum(out, _least(flat, table.circles[table.circle], None, _circle_gaps).reshape(out.shape))
-    if table.wall.any():
-        out = np.minimum(out, _least(p.reshape(-1, 2), table.walls[table.wall], None, _wall_gaps).reshape(out.shape))
+    for which, rows, gaps in table.arrays():
+        if which.any():
+            out = np.minimum(out, _least(p.reshape(-1, 2), rows[which], None, gaps).reshape(out.shape))
     return out
 
 
@@ -174,22 +172,20 @@ def _legs_slack(a: np.ndarray, b: np.ndarray, n: Sequence[int], near: np.ndarray
     """Least slack ``(L,)`` (m) over every ``every``-th sample point (and the last) of each leg ``a``–``b`` (as from
     :func:`_legs`), measured to the obstacles near it (inf if none is). The points of all legs are measured against
     the walls near any of them at once, a wall counting only for the legs it is near; the circles (a
-    recovery's sensed points) likewise; each other shape once, at the points of the legs it is near (a shape and a leg
-    at a time was three million calls in the generalisation suite's replans)."""
+    recovery's sensed points, hundreds of them) likewise; each other shape once, at the points of the legs it is
+    near."""
     fractions = [_fractions(k, every) for k in n]
     counts = [len(f) for f in fractions]
     leg = np.repeat(np.arange(len(n)), counts)
     p = a[leg] + np.concatenate(fractions) * (b - a)[leg]  # (N, 2)
     starts = np.cumsum([0] + counts[:-1])
     table = _table(obstacles)
-    walls = np.flatnonzero(near.any(axis=0) & table.wall)
     least = np.full(len(p), np.inf)
-    if len(walls):
-        least = _least(p, table.walls[walls], near[:, walls][leg], _wall_gaps)
-    circles = np.flatnonzero(near.any(axis=0) & table.circle)
-    if len(circles):
-        least = np.minimum(least, _least(p, table.circles[circles], near[:, circles][leg], _circle_gaps))
-    for k in np.flatnonzero(near.any(axis=0) & ~table.wall & ~table.circle).tolist():
+    for which, rows, gaps in table.arrays():
+        ks = np.flatnonzero(near.any(axis=0) & which)
+        if len(ks):
+            least = np.minimum(least, _least(p, rows[ks], near[:, ks][leg], gaps))
+    for k in np.flatnonzero(near.any(axis=0) & table.other).tolist():
         rows = near[leg, k]  # the points of the legs this shape is near, all at once
         shape, clearance = obstacles[k]
         least[rows] = np.minimum(least[rows], distance(p[rows], shape) - clearance)
@@ -218,6 +214,15 @@ class _Table(NamedTuple):
     walls: np.ndarray
     circle: np.ndarray
     circles: np.ndarray
+
+    @property
+    def other(self) -> np.ndarray:
+        """``(k,)``: the obstacles measured one by one (:func:`robots.geometry.distance`), neither wall nor circle."""
+        return ~self.wall & ~self.circle
+
+    def arrays(self) -> tuple:
+        """The kinds measured all at once, as ``(which (k,), rows (k, ...), gaps)`` for :func:`_least`."""
+        return ((self.wall, self.walls, _wall_gaps), (self.circle, self.circles, _circle_gaps))
 
 
 _TABLES: dict = {}

@@ -2,6 +2,7 @@
 by hand, the same records as the pymunk runner's, and the trap monitor's recovery between chunks."""
 
 import math
+import time
 from functools import partial
 
 import jax
@@ -205,8 +206,6 @@ def test_batches_in_threads_run_every_task_and_stop_starting_them_at_the_first_f
     """Every task runs once with two threads; when one fails, the task running beside it finishes, no task is started
     after it but the one or two already taken (each queued task sleeps 0.2 s, far longer than the pool takes to
     notice), and the failure comes out."""
-    import time
-
     seen: list = []
     jaxrun.in_threads([partial(seen.append, i) for i in range(7)], threads=2)
     assert sorted(seen) == list(range(7))

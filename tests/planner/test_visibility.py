@@ -7,6 +7,7 @@ import pytest
 from planner import plan
 from planner.bitmap import padded_obstacles
 from planner.visibility import segment_slack, slack
+from robots.geometry import Box, Circle
 from robots.worldfile import parse_world
 
 # A corridor 12 cm wide (between the walls' surfaces) along the centre line (0.06, 0.10) → (0.50, 0.10) →
@@ -70,7 +71,6 @@ def test_slack_to_circles_and_boxes_by_hand():
     """Circles (a recovery's sensed points) and boxes are measured apart from walls: by hand, a point 0.5 m from a
     circle's centre has slack 0.5 − radius − clearance; a leg passing 8 cm above the centre, 0.08 − r − c; and a leg
     near both a circle and a box takes the nearer (the box's edge 3 cm above it)."""
-    from robots.geometry import Box, Circle
     obstacles = [(Circle((0.0, 0.0), 0.05), 0.01)]
     assert float(slack(np.array([0.3, 0.4]), obstacles)) == pytest.approx(0.5 - 0.05 - 0.01)
     np.testing.assert_allclose(slack(np.array([[0.3, 0.4], [0.0, 0.02], [0.06, 0.0]]), obstacles),
