@@ -7,7 +7,8 @@ tick. Here one batch holds one architecture's runs over many (world, seed) pairs
 0. if a known timed event has changed the planner's map since the last tick, **wait** for the host to replan (the
    tick is not taken; it runs once the new plan is in);
 1. pass the checkpoints already within reach or seen past (``pass_checkpoints``: within 5 mm, or near one whose
-   successor the robot sees; every ``look_every`` ticks the last of ``look_ahead`` later ones it sees);
+   successor the robot sees; every ``look_every`` ticks the last of ``look_ahead`` later ones it sees, or, when a
+   known wall comes between it and its checkpoint, the latest of ``look_back`` earlier ones looked past that it sees);
 2. sense (the IR with its noise, :func:`robots.jaxworld.engine.sense`) and hand the controller its
    :class:`~robots.controllers.base.Observation` (the declared movers as markers, :func:`robots.jaxworld.moving.markers`); after a recovery the robot turns on the spot instead, for at most
    ``turn_s``, until the route is ahead (the controller is not stepped on those ticks);
@@ -127,7 +128,8 @@ class RunState(NamedTuple):
     goal's tolerance last tick (``settled``) and ``since`` when (s), until when it turns after a recovery
     (``turn_until``, s), the trap monitor, ``status`` (:data:`RUNNING` …), checkpoints ``passed`` (the goal too),
     the time (s) of the tick it stopped at the goal (``stop_t``) and of its last tick (``last_t``: a known event
-    since then replans)."""
+    since then replans), and the first and last checkpoint the look ahead took it past (``looked_past`` ``(2,)``
+    int32, empty when first > last: :class:`~evaluation.scenario.Course`'s)."""
 
     engine: engine.EngineState
     control: Any
@@ -143,6 +145,7 @@ class RunState(NamedTuple):
     passed: Any
     stop_t: Any
     last_t: Any
+    looked_past: Any
 
 
 class TickOut(NamedTuple):
@@ -166,10 +169,13 @@ def _where(flag, new, old):
     return jax.tree.map(lambda a, b: jnp.where(flag, a, b), new, old)
 
 
-def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
-    """Step 1 (:func:`evaluation.scenario.pass_checkpoints`): ``(index, passed)`` after the checkpoints within
-    ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past; then, on every
-    ``look_every``-th tick, the last of the ``look_ahead`` later ones seen from ``pos``."""
+def pass_checkpoints(setup: Setup, route: Route, pos, index, tick, past):
+    """Step 1 (:func:`evaluation.scenario.pass_checkpoints`): ``(index, passed, back, past)`` after the checkpoints
+    within ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past (``passed`` of them);
+    then, on every ``look_every``-th tick, the last of the ``look_ahead`` later ones seen from ``pos`` (``past``
+    ``(2,)``: the first and last checkpoint looked past), and, when the robot's disc would touch a known shape on
+    the straight way to the checkpoint, the latest of the ``look_back`` before it that were looked past and that it
+    sees (``back``: whether it turned back)."""
     config, radius, cps = setup.config, setup.params.radius, route.checkpoints
     need = sight_need(pos, route.sight, radius) if setup.visible else None  # once: the map's gaps from pos
 
@@ -181,12 +187,27 @@ def pass_checkpoints(setup: Setup, route: Route, pos, index, tick):
 
     start = index
     index = jax.lax.while_loop(passes, lambda i: i + 1, index)
+    looking = (tick % config.look_every == 0) if setup.visible else jnp.bool_(False)
     if setup.visible and config.look_ahead:
         ahead = jnp.minimum(index + jnp.arange(1, config.look_ahead + 1), route.last)
         seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[ahead])
         later = jnp.max(jnp.where(seen, ahead, index))  # the farthest seen
-        index = jnp.where((tick % config.look_every == 0) & (index < route.last), later, index)
-    return index, index - start
+        later = jnp.where(looking & (index < route.last), later, index)
+        skipped = later > index
+        first = jnp.where(past[0] <= past[1], jnp.minimum(past[0], index), index)
+        past = jnp.where(skipped, jnp.stack([first, later - 1]), past)
+        index = later
+    passed = index - start
+    back = jnp.bool_(False)
+    if setup.visible and config.look_back:
+        lowest = jnp.maximum(past[0], index - config.look_back)
+        behind = index - jnp.arange(1, config.look_back + 1)  # the latest first
+        open_ = (behind >= lowest) & (behind <= past[1])
+        seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[jnp.maximum(behind, 0)])
+        crossed = ~sees(pos, cps[index], route.sight, radius, 0.0)
+        back = looking & crossed & jnp.any(open_ & seen)
+        index = jnp.where(back, behind[jnp.argmax(open_ & seen)], index)
+    return index, passed, back, past
 
 
 def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState, TickOut]:
@@ -199,9 +220,9 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
                       & (scene.event_at <= t + moving.EVENT_SLACK)) if dynamic else jnp.bool_(False)
     pose = state.engine.robot.pose
     pos = pose[:2]
-    index, passed = pass_checkpoints(setup, route, pos, state.index, state.tick)
-    monitor = jaxmonitor.reset(state.monitor, t, passed > 0)
-    target_id = state.target_id + passed
+    index, passed, back, past = pass_checkpoints(setup, route, pos, state.index, state.tick, state.looked_past)
+    monitor = jaxmonitor.aim(state.monitor, index, t, index != state.index)
+    target_id = state.target_id + passed + back
     final = index == route.last
     goal = route.checkpoints[index]
     velocity = jnp.zeros(2, jnp.float32)
@@ -239,7 +260,7 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
                                                                 else config.capture_radius)
         caught, caught_t = final & jnp.any(hit), sub_t[jnp.argmax(hit)]
         heading_for = jnp.where(final, moving.positions(route.goal_path, t_end)[0], heading_for)
-    monitor = jaxmonitor.reset(monitor, t_end, near)
+    monitor = jaxmonitor.aim(monitor, index, t_end, near)
     watched, trapped = jaxmonitor.update(monitor, t_end, jnp.linalg.norm(eng.robot.pose[:2] - heading_for),
                                          eng.robot.pose[:2], setup.rule)
     watch = ~stop & ~near & ~caught
@@ -253,7 +274,7 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
     new = RunState(engine=eng, control=control, key=key, tick=ticks, index=index, target_id=target_id + near,
                    settled=inside, since=since, turn_until=turn_until, monitor=monitor, status=status,
                    passed=state.passed + passed + near + stop + caught,
-                   stop_t=jnp.where(stop, t, jnp.where(caught, caught_t, state.stop_t)), last_t=t)
+                   stop_t=jnp.where(stop, t, jnp.where(caught, caught_t, state.stop_t)), last_t=t, looked_past=past)
     live = (state.status == RUNNING) & ~changed
     out = TickOut(live=live, pose=pose, ir=ir, command=command, commanded=~stop, trace=trace,
                   collisions=eng.collisions, markers=markers, goal=goal)
@@ -552,7 +573,8 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
                      since=zeros(jnp.float32), turn_until=zeros(jnp.float32),
                      monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (len(slots),) + a.shape), jaxmonitor.init(grid)),
                      status=jnp.asarray(np.where(ids >= 0, RUNNING, TIMEOUT), jnp.int32), passed=zeros(jnp.int32),
-                     stop_t=zeros(jnp.float32), last_t=zeros(jnp.float32))
+                     stop_t=zeros(jnp.float32), last_t=zeros(jnp.float32),
+                     looked_past=jnp.tile(jnp.array([0, -1], jnp.int32), (len(slots), 1)))
     arrays = joined(*arrays)
     open_ = ids >= 0
     while open_.any():
@@ -596,8 +618,8 @@ def _replans(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
     slots = max(routes.checkpoints.shape[1], _bucket(max(len(c) for c in cps)))
     routes = routes._replace(sight=_grown(routes.sight, runs, [i for i, (_, _, c) in new.items() if c is not None]),
                              checkpoints=_padded(cps, slots), last=np.array([len(c) - 1 for c in cps], np.int32))
-    index, target_id, turn_until, last_t = (np.asarray(a).copy() for a in (state.index, state.target_id,
-                                                                            state.turn_until, state.last_t))
+    index, target_id, turn_until, last_t, past = (np.asarray(a).copy() for a in (
+        state.index, state.target_id, state.turn_until, state.last_t, state.looked_past))
     ticks = np.asarray(state.tick)
     when, at = np.zeros(len(runs), bool), np.zeros(len(runs), np.float32)
     for i, (t, event, checkpoints) in new.items():
@@ -605,7 +627,7 @@ def _replans(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
             status[i] = NO_ROUTE if event else TRAPPED
             continue
         when[i], at[i] = True, t
-        index[i], target_id[i] = 0, target_id[i] + 1
+        index[i], target_id[i], past[i] = 0, target_id[i] + 1, (0, -1)
         if event:
             last_t[i] = t  # the tick at t runs next, on the new plan, and does not replan again
         else:
@@ -618,7 +640,7 @@ def _replans(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
     routes = routes._replace(may_recover=may)
     state = state._replace(status=jnp.asarray(status), index=jnp.asarray(index), target_id=jnp.asarray(target_id),
                            turn_until=jnp.asarray(turn_until, jnp.float32), last_t=jnp.asarray(last_t, jnp.float32),
-                           monitor=monitor)
+                           monitor=monitor, looked_past=jnp.asarray(past, jnp.int32))
     return routes, state
 
 

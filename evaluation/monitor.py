@@ -18,15 +18,25 @@ monitor also ends **loops**: once the robot has driven ``loop`` metres on ground
 it comes back to after leaving it) since it last came closer to its checkpoint, it is trapped however much new
 ground it brushes on the way. A detour onto new ground never adds to that count; driving back the way it came
 does, and after ``loop`` metres of it without getting closer, recovery's replan is what the robot needs anyway.
+
+A robot may also turn back to a checkpoint it has headed for before (issue 35: the look back of
+:func:`evaluation.scenario.pass_checkpoints`, when a wall comes between it and the checkpoint the look ahead took
+it on to). Heading for another checkpoint is not progress in itself: :meth:`TrapMonitor.aim` remembers the best
+distance to each of the last :data:`REMEMBERED` checkpoints aimed at, and turning back to one of them restores
+it and keeps the time-out and the loop running, so turning back and forth cannot hold the monitor off.
 """
 
 from __future__ import annotations
 
 import math
 
+#: Checkpoints whose best distance the monitor remembers, the latest aimed at, for :meth:`TrapMonitor.aim`.
+REMEMBERED = 8
+
 
 class TrapMonitor:
-    """Time-out on progress towards the checkpoint and onto new ground; :meth:`reset` when the checkpoint changes."""
+    """Time-out on progress towards the checkpoint and onto new ground; :meth:`aim` when the checkpoint changes,
+    :meth:`reset` when the plan does."""
 
     def __init__(self, after: float, progress: float, ground: float | None = 0.05, loop: float | None = None):
         self.after, self.progress, self.ground, self.loop = after, progress, ground, loop
@@ -37,9 +47,22 @@ class TrapMonitor:
         self.reset(0.0)
 
     def reset(self, t: float) -> None:
-        """A new checkpoint (or a new plan) at time ``t``: measure the distance and the loop afresh (visited ground
-        stays)."""
+        """A new plan at time ``t``: measure the distance and the loop afresh (visited ground stays), and forget
+        the checkpoints of the plan before (checkpoint 0 is aimed at)."""
         self.best, self.since, self.looped = math.inf, t, 0.0
+        self.index, self.aimed = 0, []
+
+    def aim(self, index: int, t: float) -> None:
+        """Checkpoint ``index`` of the plan is aimed at from ``t`` (s). One of the last :data:`REMEMBERED` aimed
+        at before: its best distance comes back, and the time-out and the loop go on from where they are; any
+        other: measured afresh (as :meth:`reset`)."""
+        before = dict(self.aimed).get(index, math.inf)
+        kept = [(i, b) for i, b in self.aimed if i not in (index, self.index)]
+        self.aimed, self.index = (kept + [(self.index, self.best)])[-REMEMBERED:], index
+        if math.isfinite(before):
+            self.best = before
+        else:
+            self.best, self.since, self.looped = math.inf, t, 0.0
 
     def update(self, t: float, distance: float, position=None) -> bool:
         """Record the robot's ``distance`` (m) to its checkpoint and its ``position`` (x, y) at ``t`` (s); True

@@ -77,6 +77,8 @@ class ScenarioConfig:
     #                           moves on to the successor
     look_every: int = 4  # ticks: visible checkpoints: this often the robot looks for a later checkpoint it sees
     look_ahead: int = 3  # ... among this many after the current one, and moves on to the last it sees
+    look_back: int = 3  # ... and when a known wall comes between it and its checkpoint, turns back to the latest
+    #                     of this many before it that the look ahead took it past and that it sees (0: never)
     turn_s: float = 3.0  # s: after a recovery the robot turns on the spot to face the new route for at most this
     turn_tolerance: float = 0.2  # rad: ... until the first checkpoint is within this of straight ahead
 
@@ -95,9 +97,9 @@ class ScenarioConfig:
             raise InputError(f"scenario: trap_loop must be > 0 or None, got {self.trap_loop!r}")
         if self.capture_radius is not None and not self.capture_radius > 0:
             raise InputError(f"scenario: capture_radius must be > 0, got {self.capture_radius!r}")
-        if self.look_every < 1 or self.look_ahead < 0:
-            raise InputError(f"scenario: look_every must be >= 1 and look_ahead >= 0, got {self.look_every}, "
-                             f"{self.look_ahead}")
+        if self.look_every < 1 or self.look_ahead < 0 or self.look_back < 0:
+            raise InputError(f"scenario: look_every must be >= 1 and look_ahead and look_back >= 0, got "
+                             f"{self.look_every}, {self.look_ahead}, {self.look_back}")
         if self.max_recoveries < 0:
             raise InputError(f"scenario: max_recoveries must be >= 0, got {self.max_recoveries}")
 
@@ -291,7 +293,9 @@ class Course:
     obstacles (``sight``, for the look past a checkpoint), the time of the last tick (``last_t``: an event since
     then replans), the contact episodes logged so far, since when the robot has stood within the goal's tolerance
     (``settled_since``), until when it turns on the spot after a recovery (``turn_until``), the replans and
-    recoveries so far, and how it ended (``ended``: "" while it runs; ``arrived``, ``trapped``)."""
+    recoveries so far, the checkpoints of the plan the look ahead took it past without reaching them
+    (``looked_past``: first and last index; empty when first > last), and how it ended (``ended``: "" while it
+    runs; ``arrived``, ``trapped``)."""
 
     plan: object
     known: World
@@ -304,6 +308,7 @@ class Course:
     turn_until: float = 0.0
     replans: int = 0
     recoveries: int = 0
+    looked_past: tuple[int, int] = (0, -1)
     ended: str = ""
     arrived: bool = False
     trapped: bool = False
@@ -404,7 +409,7 @@ def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
     shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
     shell.monitor.reset(t)
     return replace(course, plan=current, known=known, sight=padded_obstacles(known, t, shell.robot.radius), index=0,
-                   target_id=course.target_id + 1, replans=course.replans + 1)
+                   target_id=course.target_id + 1, replans=course.replans + 1, looked_past=(0, -1))
 
 
 def after_events(shell: Shell, course: Course, t: float) -> Course:
@@ -421,7 +426,22 @@ def pass_checkpoints(shell: Shell, course: Course, t: float, tick: int) -> Cours
     """Checkpoints already within reach (two that coincide at a corner, or a replan starting on one), and with
     visible checkpoints one the robot is near whose successor it already sees (it cut the corner); then, every
     ``look_every`` ticks, a later checkpoint it already sees from wherever a detour has taken it (round a blocked
-    door, say): the checkpoints before it are behind the robot."""
+    door, say): the checkpoints before it are behind the robot. And when, on such a tick, a known wall comes between
+    the robot and its checkpoint (its disc would touch the wall on the straight way there), the robot
+    turns back to the latest of the ``look_back`` checkpoints before it that the look ahead took it past and that
+    it sees (issue 35: the look ahead skips a doorway's mouth, a mover pushes the robot back beside the jamb, and a
+    controller heading for a point behind the jamb commits to the wrong side of it). The trap monitor is told each
+    checkpoint aimed at when the tick's passing is done (:meth:`~evaluation.monitor.TrapMonitor.aim`): turning back
+    is not progress."""
+    start = course.index
+    course = _passed(shell, course, t, tick)
+    if course.index != start:
+        shell.monitor.aim(course.index, t)
+    return course
+
+
+def _passed(shell: Shell, course: Course, t: float, tick: int) -> Course:
+    """The passing of :func:`pass_checkpoints`, before the monitor is told."""
     config, position, log = shell.config, shell.sim.pose[:2], shell.rec.checkpoint_log
     last = len(course.plan.checkpoints) - 1
     visible = course.plan.rule == "visible"
@@ -430,13 +450,19 @@ def pass_checkpoints(shell: Shell, course: Course, t: float, tick: int) -> Cours
             or (visible and _sees_next(position, course.plan, course.index, config, course.sight))):
         log.append((t, *course.plan.checkpoints[course.index]))
         course = course.moved_on()
-        shell.monitor.reset(t)
-    if visible and tick % config.look_every == 0 and course.index < last:
+    if not (visible and tick % config.look_every == 0):
+        return course
+    if course.index < last:
         later = _seen_later(position, course.plan, course.index, config, course.sight)
         log.extend((t, *course.plan.checkpoints[j]) for j in range(course.index, later))
         if later > course.index:
-            course = course.moved_on(later - course.index)
-            shell.monitor.reset(t)
+            first, _ = course.looked_past
+            past = (min(first, course.index) if first <= course.looked_past[1] else course.index, later - 1)
+            course = replace(course.moved_on(later - course.index), looked_past=past)
+    if config.look_back:
+        earlier = _seen_earlier(position, course, config)
+        if earlier is not None:
+            course = replace(course, index=earlier, target_id=course.target_id + 1)
     return course
 
 
@@ -501,8 +527,9 @@ def drive(shell: Shell, course: Course, t: float, goal, command) -> tuple[Course
     elif not course.final and np.any(near := np.linalg.norm(trace[:, :2] - goal, axis=1)
                                      < shell.config.checkpoint_tolerance):
         rec.checkpoint_log.append((t + robot.dt * (int(np.argmax(near)) + 1), *goal))
-        shell.monitor.reset(sim.t)
-        return course.moved_on(), True
+        course = course.moved_on()
+        shell.monitor.aim(course.index, sim.t)
+        return course, True
     return course, False
 
 
@@ -558,6 +585,26 @@ def _seen_later(position, current, index: int, config: ScenarioConfig, sight) ->
         if visibility.segment_clear(position, current.checkpoints[j], sight, need):
             return j
     return index
+
+
+def _seen_earlier(position, course: Course, config: ScenarioConfig) -> int | None:
+    """When a known wall comes between the robot at ``position`` and its checkpoint — the robot's disc would touch
+    it somewhere along the straight segment to it (slack below 0 on the planner's map ``course.sight``) — the latest
+    of the ``look_back`` checkpoints before it that the look ahead took the robot past (``course.looked_past``) and
+    that it sees as :func:`_seen_later` measures it; otherwise None."""
+    current, index, sight = course.plan, course.index, course.sight
+    first, last = course.looked_past
+    lowest = max(first, index - config.look_back)
+    if last < lowest:
+        return None
+    here = float(visibility.slack(position, sight))
+    if visibility.segment_clear(position, current.checkpoints[index], sight, 0.0):
+        return None
+    need = min(0.5 * visibility.MARGIN, here) - visibility.TOLERANCE
+    for j in range(min(last, index - 1), lowest - 1, -1):
+        if visibility.segment_clear(position, current.checkpoints[j], sight, need):
+            return j
+    return None
 
 
 def _sees_next(position, current, index: int, config: ScenarioConfig, sight) -> bool:

@@ -59,3 +59,28 @@ def test_reset_measures_the_distance_afresh_but_keeps_the_ground():
     assert bool(m.visited[10, 10]) and int(m.visited.sum()) == 1
     kept = jaxmonitor.reset(m, jnp.float32(9.0), when=False)
     assert float(kept.since) == 3.0
+
+
+def test_aim_keeps_the_best_distance_of_the_last_eight_checkpoints_as_the_python_monitor_does():
+    """Checkpoints 0, 1, …, 9 aimed at in turn, 0.5 m from each when it is left (ground updates far apart, no loop);
+    then back to 2 (its 0.5 m comes back; the time-out goes on from 9 s), to 0 (forgotten: afresh at 11 s), and a
+    reset. Each monitor's (best, since) after each step, the Python one the reference."""
+    py = TrapMonitor(RULE.after, RULE.progress, RULE.ground, RULE.loop)
+    m = jaxmonitor.init(GRID)
+    aim = jax.jit(jaxmonitor.aim)
+    seen = []
+    for i in range(10):
+        if i:
+            py.aim(i, float(i))
+            m = aim(m, jnp.int32(i), jnp.float32(i))
+        p = (0.025 + 0.1 * i, 0.025)
+        py.update(float(i), 0.5, p)
+        m, _ = _update(m, jnp.float32(i), jnp.float32(0.5), jnp.asarray(p, jnp.float32), RULE)
+    for i, t in ((2, 10.0), (0, 11.0), (1, 12.0)):
+        py.aim(i, t)
+        m = aim(m, jnp.int32(i), jnp.float32(t))
+        seen.append(((py.best, py.since), (float(m.best), float(m.since))))
+    assert [a for a, _ in seen] == [(0.5, 9.0), (np.inf, 11.0), (np.inf, 12.0)]  # 1 was evicted by 0's return
+    assert [b for _, b in seen] == [a for a, _ in seen]
+    m = jaxmonitor.reset(m, jnp.float32(13.0))
+    assert int(m.index) == 0 and bool(jnp.all(m.keys == -1))

@@ -224,3 +224,24 @@ def test_batches_in_threads_run_every_task_and_stop_starting_them_at_the_first_f
         jaxrun.in_threads([slow, bad] + queued, threads=2)
     assert "slow done" in log
     assert len([x for x in log if isinstance(x, int)]) <= 2
+
+
+def test_the_jax_runner_turns_back_where_the_pymunk_runner_does():
+    """:func:`jaxrun.pass_checkpoints` on the scene of test_scenario's look back (a wall between the robot and the
+    goal; the checkpoint above the wall's end looked past): the same answers, worked out there."""
+    from tests.evaluation.test_scenario import JAMB, JAMB_CHECKPOINTS
+
+    def after(position, tick, past=(1, 1), look_back=3):
+        setup = jaxrun.setup_for(GO, None, (), ScenarioConfig(look_back=look_back))
+        route = jaxrun.Route(scene=None, sight=jaxrun.scene_of(jaxrun._sight_world(JAMB)),
+                             checkpoints=jnp.asarray(JAMB_CHECKPOINTS, jnp.float32), last=jnp.int32(2), ticks=None,
+                             may_recover=None, radii=None, goal_path=None)
+        index, passed, back, _ = jaxrun.pass_checkpoints(setup, route, jnp.asarray(position, jnp.float32), jnp.int32(2),
+                                                         jnp.int32(tick), jnp.asarray(past, jnp.int32))
+        return int(index), int(passed), bool(back)
+
+    assert after((0.3, 0.35), 4) == (1, 0, True)
+    assert after((0.3, 0.35), 5) == (2, 0, False)
+    assert after((0.3, 0.35), 4, past=(0, -1)) == (2, 0, False)
+    assert after((0.3, 0.35), 4, look_back=0) == (2, 0, False)
+    assert after((0.6, 0.6), 4) == (2, 0, False)

@@ -1,6 +1,8 @@
 """The trap monitor (evaluation.monitor): progress and a new checkpoint reset it; the ground rule lets a detour
 finish and stops a robot circling in place."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -94,3 +96,35 @@ def test_a_scripted_long_detour_onto_new_ground_is_not_stopped():
     back = [p * np.array([1, 0]) for p in path]
     t = first_fired(TrapMonitor(15.0, 0.01, ground=0.05, loop=1.5), back, checkpoint)
     assert t == pytest.approx(4.8 / 0.16, abs=0.6)
+
+
+def test_heading_back_to_a_checkpoint_aimed_at_before_is_not_progress():
+    """A robot that turns back and forth between checkpoints 0 and 1 every second, standing still 0.8 m from one and
+    1.0 m from the other (ground off): each is measured afresh the first time it is aimed at (0 s and 1 s), never
+    again, so the time-out runs from the last progress, the first distance to 1 at 1 s: trapped at 21 s. Had every
+    change of checkpoint reset the monitor, it would never fire."""
+    m = TrapMonitor(after=20.0, progress=0.01, ground=None)
+    fired = []
+    for k in range(30):
+        index = k % 2
+        if k:
+            m.aim(index, float(k))
+        fired.append(m.update(float(k), 0.8 if index == 0 else 1.0))
+    assert fired.index(True) == 21
+
+
+def test_the_monitor_remembers_the_last_eight_checkpoints_aimed_at():
+    """Checkpoints 0, 1, …, 9 aimed at in turn, each left 0.5 m away: back to 2 (left eight aims ago) its 0.5 m comes
+    back, so 0.495 m is no progress; back to 0 (nine ago, forgotten) is measured afresh; a new plan forgets all."""
+    m = TrapMonitor(after=20.0, progress=0.01, ground=None)
+    m.update(0.0, 0.5)
+    for i in range(1, 10):
+        m.aim(i, float(i))
+        m.update(float(i), 0.5)
+    m.aim(2, 10.0)
+    assert m.best == 0.5 and m.since == 9.0
+    m.aim(0, 11.0)
+    assert m.best == math.inf and m.since == 11.0
+    m.reset(12.0)
+    m.aim(3, 12.0)
+    assert m.best == math.inf

@@ -321,3 +321,39 @@ def test_a_caught_moving_goal_has_no_stop_distance_and_a_still_one_has_its_own()
     still = run_architecture(load_world("open-arena"), spec, seed=0).outcome()
     assert still["arrived"] and still["stop_distance_m"] == pytest.approx(still["final_distance_m"], abs=1e-5)
     assert still["stop_distance_m"] < 0.005
+
+
+#: A wall from the bottom up to y = 0.5, the goal behind it; the look ahead took the robot past the checkpoint
+#: above the wall's end (index 1) on to the goal (index 2).
+JAMB = parse_world({"name": "jamb", "size": [1.0, 0.8], "walls": [[0.5, 0.0, 0.5, 0.5]], "start": [0.3, 0.35, 0.0],
+                    "goal": [0.8, 0.3]}, "jamb.json")
+JAMB_CHECKPOINTS = np.array([[0.2, 0.6], [0.5, 0.6], [0.8, 0.3]])
+
+
+def looked_back(position, tick, looked_past=(1, 1), look_back=3):
+    """The checkpoint a robot at ``position`` heads for after the runner's passing on ``tick``, having headed for
+    the goal (index 2) of :data:`JAMB`; with the monitor's checkpoint."""
+    from types import SimpleNamespace
+
+    from evaluation.monitor import TrapMonitor
+    from evaluation.scenario import Course, pass_checkpoints
+    from planner.bitmap import padded_obstacles
+
+    shell = SimpleNamespace(config=ScenarioConfig(look_back=look_back), sim=SimpleNamespace(pose=np.array([*position, 0.0])),
+                            rec=SimpleNamespace(checkpoint_log=[]), monitor=TrapMonitor(20.0, 0.01))
+    plan = SimpleNamespace(checkpoints=JAMB_CHECKPOINTS, rule="visible")
+    course = Course(plan, JAMB, padded_obstacles(JAMB, 0.0, KHEPERA.radius), index=2, target_id=5,
+                    looked_past=looked_past)
+    after = pass_checkpoints(shell, course, 0.0, tick)
+    return after.index, after.target_id, shell.monitor.index
+
+
+def test_a_robot_that_a_wall_cuts_off_from_its_checkpoint_turns_back_to_the_one_it_was_looked_past():
+    """At (0.3, 0.35) the straight way to the goal (0.8, 0.3) crosses the wall at y = 0.33; the way to the checkpoint
+    above the wall's end passes the end 6.25 cm off, 3.6 cm clear of the body (1.2 cm are asked): on a look (every
+    4th tick) the robot turns back to it, a new target for the controller and the monitor."""
+    assert looked_back((0.3, 0.35), tick=4) == (1, 6, 1)
+    assert looked_back((0.3, 0.35), tick=5) == (2, 5, 0)  # looks come every 4th tick only
+    assert looked_back((0.3, 0.35), tick=4, looked_past=(0, -1)) == (2, 5, 0)  # it reached 1: it does not go back
+    assert looked_back((0.3, 0.35), tick=4, look_back=0) == (2, 5, 0)
+    assert looked_back((0.6, 0.6), tick=4) == (2, 5, 0)  # past the wall's end: the goal in clear view
