@@ -226,28 +226,13 @@ def _fields_rows(table):
     return {r["family"]: r for r in table.families if r["architecture"] == "fields"}
 
 
-#: Families where the default fields fall short of issue 21's 70 % today, with what was measured: kept as
-#: expected failures (strict: the test fails the day they pass, and the entry must go) so that the shortfall is
-#: on record and the other families stay guarded. ``movers``: time limits at corridors a mover shuttles along; the
-#: measurements are in docs/reproduce/every-kind.md.
-SHORT_OF_70 = ("movers",)
-
-
 @pytest.mark.slow
 def test_the_default_fields_reach_85_percent_overall_and_70_percent_in_every_family(table):
     rows = _fields_rows(table)
     assert rows["all"]["success_rate"] >= 0.85, rows["all"]
     for f in FAMILIES:
         assert rows[f]["worlds"] == 20, rows[f]
-        if f not in SHORT_OF_70:
-            assert rows[f]["success_rate"] >= 0.70, rows[f]
-
-
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 35 (open): the fields fall short among movers (docs/reproduce/every-kind.md)")
-@pytest.mark.parametrize("family", SHORT_OF_70)
-def test_the_default_fields_reach_70_percent_in_the_families_still_short(table, family):
-    assert _fields_rows(table)[family]["success_rate"] >= 0.70, _fields_rows(table)[family]
+        assert rows[f]["success_rate"] >= 0.70, rows[f]
 
 
 @pytest.mark.slow
