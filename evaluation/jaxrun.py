@@ -170,12 +170,19 @@ def _where(flag, new, old):
 
 
 def pass_checkpoints(setup: Setup, route: Route, pos, index, tick, past):
-    """Step 1 (:func:`evaluation.scenario.pass_checkpoints`): ``(index, passed, back, past)`` after the checkpoints
-    within ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past (``passed`` of them);
-    then, on every ``look_every``-th tick, the last of the ``look_ahead`` later ones seen from ``pos`` (``past``
-    ``(2,)``: the first and last checkpoint looked past), and, when the robot's disc would touch a known shape on
-    the straight way to the checkpoint, the latest of the ``look_back`` before it that were looked past and that it
-    sees (``back``: whether it turned back)."""
+    """Step 1 (:func:`evaluation.scenario.pass_checkpoints`) of one run: ``(index, passed, back, past)`` after the
+    checkpoints within ``checkpoint_tolerance`` of ``pos`` or, with visible checkpoints, near and seen past
+    (:func:`pass_near`), then the look of every ``look_every``-th tick (:func:`look`); ``passed`` counts the
+    checkpoints passed, ``back`` whether it turned back, ``past`` ``(2,)`` the first and last looked past."""
+    near, need = pass_near(setup, route, pos, index)
+    index_, ahead, back, past = look(setup, route, pos, near, tick, past, need)
+    return index_, near - index + ahead, back, past
+
+
+def pass_near(setup: Setup, route: Route, pos, index):
+    """``(index, need)``: the checkpoint headed for after those within ``checkpoint_tolerance`` of ``pos`` or, with
+    visible checkpoints, near and seen past; and the slack a line from ``pos`` must keep to count as seen
+    (:func:`~robots.jaxworld.task.sight_need`; None without visible checkpoints)."""
     config, radius, cps = setup.config, setup.params.radius, route.checkpoints
     need = sight_need(pos, route.sight, radius) if setup.visible else None  # once: the map's gaps from pos
 
@@ -185,9 +192,17 @@ def pass_checkpoints(setup: Setup, route: Route, pos, index, tick, past):
             within = within | sees_next(pos, cps, i, route.sight, radius, config.pass_radius, need)
         return (i < route.last) & within
 
-    start = index
-    index = jax.lax.while_loop(passes, lambda i: i + 1, index)
+    return jax.lax.while_loop(passes, lambda i: i + 1, index), need
+
+
+def look(setup: Setup, route: Route, pos, index, tick, past, need):
+    """The look of a ``look_every``-th tick (a no-op on the others): ``(index, ahead, back, past)`` — the last of the
+    ``look_ahead`` checkpoints after ``index`` seen from ``pos`` (``ahead`` of them passed; ``past`` ``(2,)`` the
+    first and last looked past), then, when the robot's disc would touch a known shape on the straight way to the
+    checkpoint, the latest of the ``look_back`` before it that were looked past and that it sees (``back``)."""
+    config, radius, cps = setup.config, setup.params.radius, route.checkpoints
     looking = (tick % config.look_every == 0) if setup.visible else jnp.bool_(False)
+    start = index
     if setup.visible and config.look_ahead:
         ahead = jnp.minimum(index + jnp.arange(1, config.look_ahead + 1), route.last)
         seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[ahead])
@@ -210,8 +225,31 @@ def pass_checkpoints(setup: Setup, route: Route, pos, index, tick, past):
     return index, passed, back, past
 
 
-def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState, TickOut]:
-    """One 0.128 s tick of one run (the module docstring's steps); a run not :data:`RUNNING` stays as it is."""
+def passing(setup: Setup, routes: Route, state: RunState):
+    """Step 1 for a block of runs (leading axis B): :func:`pass_checkpoints` of each, its ``(index, passed, back,
+    past)``, with the look (its sight lines, most of the step's work) worked out only on ticks where some run of
+    the block looks (``lax.cond`` outside the ``vmap``: runs started together look on the same ticks)."""
+    pos = state.engine.robot.pose[:, :2]
+    near, need = jax.vmap(partial(pass_near, setup))(routes, pos, state.index)
+
+    def looked(_):
+        index, ahead, back, past = jax.vmap(partial(look, setup))(routes, pos, near, state.tick, state.looked_past,
+                                                                   need)
+        return index, near - state.index + ahead, back, past
+
+    def still(_):
+        return near, near - state.index, jnp.zeros_like(near, bool), state.looked_past
+
+    config = setup.config
+    if not (setup.visible and (config.look_ahead or config.look_back)):
+        return still(None)
+    due = jnp.any((state.tick % config.look_every == 0) & (state.status == RUNNING))
+    return jax.lax.cond(due, looked, still, None)
+
+
+def tick(setup: Setup, route: Route, state: RunState, arrays, passed_to=None) -> tuple[RunState, TickOut]:
+    """One 0.128 s tick of one run (the module docstring's steps); a run not :data:`RUNNING` stays as it is.
+    ``passed_to``: step 1's ``(index, passed, back, past)`` if the caller worked it out (:func:`passing`)."""
     p, config, dynamic = setup.params, setup.config, setup.dynamic
     key, k_ir, k_slip = jax.random.split(state.key, 3)
     t = state.engine.k.astype(jnp.float32) * p.dt
@@ -220,7 +258,9 @@ def tick(setup: Setup, route: Route, state: RunState, arrays) -> tuple[RunState,
                       & (scene.event_at <= t + moving.EVENT_SLACK)) if dynamic else jnp.bool_(False)
     pose = state.engine.robot.pose
     pos = pose[:2]
-    index, passed, back, past = pass_checkpoints(setup, route, pos, state.index, state.tick, state.looked_past)
+    if passed_to is None:
+        passed_to = pass_checkpoints(setup, route, pos, state.index, state.tick, state.looked_past)
+    index, passed, back, past = passed_to
     monitor = jaxmonitor.aim(state.monitor, index, t, index != state.index)
     target_id = state.target_id + passed + back
     final = index == route.last
@@ -296,7 +336,7 @@ def advance(setup: Setup, block: int, routes: Route, state: RunState, arrays, le
 
     def go(x):
         route, s, arr = x
-        s, outs = jax.lax.scan(lambda c, _: one(route, c, arr), s, None, length=length)
+        s, outs = jax.lax.scan(lambda c, _: one(route, c, arr, passing(setup, route, c)), s, None, length=length)
         return s, jax.tree.map(lambda a: jnp.swapaxes(a, 0, 1), outs)
 
     def run(x):
