@@ -4,6 +4,7 @@ runs one at a time on pymunk (``evaluation.scenario``) for the ratio.
 
     python benchmarks/perf/bench_jaxrun.py
     python benchmarks/perf/bench_jaxrun.py --architecture fields --world three-rooms --batches 1,16,64,256 --pymunk 8
+    python benchmarks/perf/bench_jaxrun.py --architecture samba --batches 128 --pymunk 0 --look-back 0
 
 Each batch size is run twice: the first call compiles (its wall time less the second's is the compile time, one per
 architecture and shape), the second is the throughput. The batch uses every device JAX has as one (no sharding).
@@ -21,6 +22,8 @@ def main() -> None:
     ap.add_argument("--world", default="three-rooms")
     ap.add_argument("--batches", default="1,8,32,128", help="batch sizes, comma-separated")
     ap.add_argument("--pymunk", type=int, default=8, help="runs on pymunk for the ratio (0: none)")
+    ap.add_argument("--look-back", type=int, default=None,
+                    help="the runner's look back (ScenarioConfig.look_back; default: its default)")
     args = ap.parse_args()
 
     import jax
@@ -31,6 +34,8 @@ def main() -> None:
     from robots.worldnames import load_world
 
     spec, world, config = parse_architecture(args.architecture), load_world(args.world), ScenarioConfig()
+    if args.look_back is not None:
+        config = ScenarioConfig(look_back=args.look_back)
     print(f"{args.architecture} in {args.world}, devices {jax.devices()}")
     print("engine  batch  compile s  wall s  runs/s  sim s / wall s  reached")
     for b in [int(x) for x in args.batches.split(",")]:
