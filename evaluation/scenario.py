@@ -456,9 +456,9 @@ def _passed(shell: Shell, course: Course, t: float, tick: int) -> Course:
         later = _seen_later(position, course.plan, course.index, config, course.sight)
         log.extend((t, *course.plan.checkpoints[j]) for j in range(course.index, later))
         if later > course.index:
-            first, _ = course.looked_past
-            past = (min(first, course.index) if first <= course.looked_past[1] else course.index, later - 1)
-            course = replace(course.moved_on(later - course.index), looked_past=past)
+            first, last_past = course.looked_past
+            first = min(first, course.index) if first <= last_past else course.index
+            course = replace(course.moved_on(later - course.index), looked_past=(first, later - 1))
     if config.look_back:
         earlier = _seen_earlier(position, course, config)
         if earlier is not None:
@@ -579,7 +579,7 @@ def turn_on_the_spot(alpha, robot, xp=np):
 def _seen_later(position, current, index: int, config: ScenarioConfig, sight) -> int:
     """The last of the ``look_ahead`` checkpoints after ``index`` that the robot at ``position`` sees (as
     :func:`_sees_next` measures it), or ``index`` if it sees none of them."""
-    need = min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
+    need = _sight_need(position, sight)
     last = min(index + config.look_ahead, len(current.checkpoints) - 1)
     for j in range(last, index, -1):
         if visibility.segment_clear(position, current.checkpoints[j], sight, need):
@@ -597,10 +597,9 @@ def _seen_earlier(position, course: Course, config: ScenarioConfig) -> int | Non
     lowest = max(first, index - config.look_back)
     if last < lowest:
         return None
-    here = float(visibility.slack(position, sight))
     if visibility.segment_clear(position, current.checkpoints[index], sight, 0.0):
         return None
-    need = min(0.5 * visibility.MARGIN, here) - visibility.TOLERANCE
+    need = _sight_need(position, sight)
     for j in range(min(last, index - 1), lowest - 1, -1):
         if visibility.segment_clear(position, current.checkpoints[j], sight, need):
             return j
@@ -615,8 +614,14 @@ def _sees_next(position, current, index: int, config: ScenarioConfig, sight) -> 
     here = current.checkpoints[index]
     if np.linalg.norm(position - here) > config.pass_radius:
         return False
-    need = min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
-    return visibility.segment_clear(position, current.checkpoints[index + 1], sight, need)
+    return visibility.segment_clear(position, current.checkpoints[index + 1], sight, _sight_need(position, sight))
+
+
+def _sight_need(position, sight) -> float:
+    """The slack (m) a straight segment from ``position`` must keep on the planner's map ``sight`` to count as seen:
+    half the planner's margin, or the slack the robot has where it stands if less, less the visibility's tolerance
+    (:mod:`planner.visibility`)."""
+    return min(0.5 * visibility.MARGIN, float(visibility.slack(position, sight))) - visibility.TOLERANCE
 
 
 def _in_one_loop(step):

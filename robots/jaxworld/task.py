@@ -130,7 +130,7 @@ def _route(pose, index, task: Task):
 def sight_need(pos, sight: Scene, radius: float):
     """The slack (m) a straight line from ``pos`` ``(2,)`` must keep from the known shapes ``sight`` beyond the
     robot's ``radius`` to count as seen: ``min(MARGIN / 2, the robot's own slack here) - TOLERANCE``
-    (:func:`evaluation.scenario._sees_next`'s rule, :mod:`planner.visibility`'s constants)."""
+    (:func:`evaluation.scenario._sight_need`, :mod:`planner.visibility`'s constants)."""
     from planner.visibility import MARGIN, TOLERANCE
 
     return jnp.minimum(0.5 * MARGIN, jnp.min(gaps(pos, sight)[0]) - radius) - TOLERANCE
