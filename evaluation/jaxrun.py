@@ -247,9 +247,10 @@ def passing(setup: Setup, routes: Route, state: RunState):
     return jax.lax.cond(due, looked, still, None)
 
 
-def tick(setup: Setup, route: Route, state: RunState, arrays, passed_to=None) -> tuple[RunState, TickOut]:
-    """One 0.128 s tick of one run (the module docstring's steps); a run not :data:`RUNNING` stays as it is.
-    ``passed_to``: step 1's ``(index, passed, back, past)`` if the caller worked it out (:func:`passing`)."""
+def tick(setup: Setup, route: Route, state: RunState, arrays, passed_to) -> tuple[RunState, TickOut]:
+    """One 0.128 s tick of one run (the module docstring's steps) after step 1, ``passed_to`` (its ``(index,
+    passed, back, past)``, :func:`pass_checkpoints`, which :func:`passing` works out for a block of runs at once); a
+    run not :data:`RUNNING` stays as it is."""
     p, config, dynamic = setup.params, setup.config, setup.dynamic
     key, k_ir, k_slip = jax.random.split(state.key, 3)
     t = state.engine.k.astype(jnp.float32) * p.dt
@@ -258,8 +259,6 @@ def tick(setup: Setup, route: Route, state: RunState, arrays, passed_to=None) ->
                       & (scene.event_at <= t + moving.EVENT_SLACK)) if dynamic else jnp.bool_(False)
     pose = state.engine.robot.pose
     pos = pose[:2]
-    if passed_to is None:
-        passed_to = pass_checkpoints(setup, route, pos, state.index, state.tick, state.looked_past)
     index, passed, back, past = passed_to
     monitor = jaxmonitor.aim(state.monitor, index, t, index != state.index)
     target_id = state.target_id + passed + back
