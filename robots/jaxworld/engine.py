@@ -87,13 +87,17 @@ def reset(pose, scene: Scene, params: RobotParams = KHEPERA) -> EngineState:
 
 
 def _slide(vel, overlap, normal, other=None):
-    """``vel`` ``(2,)`` less its push into the two deepest contacts (``overlap > 0``), deepest first; relative to
-    the contacts' own velocities ``other`` ``(C + P, 2)`` if given (a mover)."""
-    depth, order = jax.lax.top_k(overlap, 2)
-    for j in range(2):
-        n = normal[order[j]]
-        push = (vel if other is None else vel - other[order[j]]) @ n
-        vel = jnp.where((depth[j] > 0) & (push > 0), vel - push * n, vel)
+    """``vel`` ``(2,)`` less its push into the two deepest contacts (``overlap > 0``), deepest first (ties: the
+    lower index first); relative to the contacts' own velocities ``other`` ``(C + P, 2)`` if given (a mover).
+
+    Two ``argmax`` passes, not ``lax.top_k``: the same pair, and XLA's ``top_k`` on a CPU is slow for a handful of
+    elements (docs/performance.md)."""
+    for _ in range(2):
+        i = jnp.argmax(overlap)
+        n = normal[i]
+        push = (vel if other is None else vel - other[i]) @ n
+        vel = jnp.where((overlap[i] > 0) & (push > 0), vel - push * n, vel)
+        overlap = overlap.at[i].set(-jnp.inf)
     return vel
 
 
