@@ -45,20 +45,37 @@ def _reset_all(keys, task, config):
 BLOCK = 16
 
 
-def _step_one(state, action, done, task, config):
-    """Step one run, or reset it if its episode ended on the last call (next-step autoreset)."""
-    stepped, obs, reward, terminated, truncated = jt.step(state, action, task, config)
-    fresh, fresh_obs = jt.reset(stepped.key, task, config)
-    state = jax.tree.map(lambda a, b: jnp.where(done, a, b), fresh, stepped)
-    return (state, jnp.where(done, fresh_obs, obs), jnp.where(done, 0.0, reward), terminated & ~done,
-            truncated & ~done)
+def _where(done, a, b):
+    """``a`` where ``done`` ``(B,)``, else ``b``: leaves of two pytrees with a leading axis B."""
+    return jax.tree.map(lambda x, y: jnp.where(done.reshape(done.shape + (1,) * (x.ndim - 1)), x, y), a, b)
+
+
+def _step_block(state, action, done, task, config):
+    """Step a block of runs (leading axis B), resetting those whose episode ended on the last call (next-step
+    autoreset). The resets are worked out only in a block that has one (``lax.cond`` outside the ``vmap``):
+    episodes are hundreds of ticks long, so most blocks have none."""
+    stepped, obs, reward, terminated, truncated = jax.vmap(partial(jt.step, task=task, config=config))(state, action)
+
+    def fresh(_):
+        new, new_obs = jax.vmap(partial(jt.reset, task=task, config=config))(stepped.key)
+        return _where(done, new, stepped), _where(done, new_obs, obs)
+
+    state, obs = jax.lax.cond(jnp.any(done), fresh, lambda _: (stepped, obs), None)
+    return state, obs, jnp.where(done, 0.0, reward), terminated & ~done, truncated & ~done
 
 
 @partial(jax.jit, static_argnames="config")
 def _step_all(state, actions, done, task, config):
-    """Every run's :func:`_step_one`, in blocks of :data:`BLOCK`."""
-    one = partial(_step_one, task=task, config=config)
-    return jax.lax.map(lambda x: one(*x), (state, actions, done), batch_size=min(BLOCK, actions.shape[0]))
+    """Every run's step in blocks of :data:`BLOCK` (:func:`_step_block`; the last block padded with copies of run 0
+    that are dropped)."""
+    n = actions.shape[0]
+    block = min(BLOCK, n)
+    pad = -n % block
+    xs = jax.tree.map(lambda a: jnp.concatenate([a, jnp.repeat(a[:1], pad, axis=0)]) if pad else a,
+                      (state, actions, done))
+    xs = jax.tree.map(lambda a: a.reshape(((n + pad) // block, block) + a.shape[1:]), xs)
+    out = jax.lax.map(lambda x: _step_block(*x, task=task, config=config), xs)
+    return jax.tree.map(lambda a: a.reshape((n + pad,) + a.shape[2:])[:n], out)
 
 
 class KheperaVectorEnv(VectorEnv):

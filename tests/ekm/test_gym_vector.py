@@ -40,19 +40,20 @@ def test_a_seed_gives_each_sub_environment_its_own_run_whatever_runs_beside_it()
     assert len({tuple(row) for row in b[:, -2:].tolist()}) == 3  # each its own slip: three different poses
 
 
-def test_next_step_autoreset_after_the_time_limit():
+@pytest.mark.parametrize("n", [2, 17])  # 17: a whole block of 16 and one run in a padded block
+def test_next_step_autoreset_after_the_time_limit(n):
     # a 2-tick limit (0.256 s): the 2nd step truncates every run; the 3rd resets it — reward 0, neither flag, and
     # the first observation of a new run (at the start: the first checkpoint where it was at the first reset)
-    envs = KheperaVectorEnv(2, world="open-arena", time_limit=0.256)
+    envs = KheperaVectorEnv(n, world="open-arena", time_limit=0.256)
     first, _ = envs.reset(seed=0)
-    go = np.full((2, 2), 0.12, np.float32)
+    go = np.full((n, 2), 0.12, np.float32)
     _, _, terminated, truncated, _ = envs.step(go)
     assert not truncated.any() and not terminated.any()
     moved, _, terminated, truncated, _ = envs.step(go)
     assert truncated.all() and not terminated.any()
     assert not np.allclose(moved[:, -2:], first[:, -2:])
     again, reward, terminated, truncated, _ = envs.step(go)
-    assert reward.tolist() == [0.0, 0.0] and not terminated.any() and not truncated.any()
+    assert reward.tolist() == [0.0] * n and not terminated.any() and not truncated.any()
     assert again[:, -2:] == pytest.approx(first[:, -2:], abs=1e-6)
     _, reward, _, _, _ = envs.step(go)
     assert (reward != 0).all()  # the new run goes on
