@@ -55,8 +55,8 @@ import jax.numpy as jnp
 import numpy as np
 
 from evaluation import jaxmonitor
-from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, mover_radius, replan_from,
-                                 sensed_points, split_step, time_limit_for, turn_on_the_spot, with_sensed)
+from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, mover_radius, recovery,
+                                 replan_from, split_step, time_limit_for, turn_on_the_spot)
 from robots import kinematics
 from robots.controllers.base import Observation
 from robots.jaxworld import engine, moving
@@ -484,12 +484,11 @@ def recover(run: Run, pose, t: float, config: ScenarioConfig):
         return None
     run.recoveries += 1
     body = run.body
-    known, added = with_sensed(run.known, *sensed_points(run.sensed, body), config.sensed_radius,
-                               body.sensors.noise, body.sensors.resolution_m)
-    current = replan_from(run.plan, known, np.asarray(pose[:2], float), t, body.robot, config)
-    if current is None:
+    found = recovery(run.plan, run.known, run.sensed, body, pose[:2], t, config)
+    if found is None:
         run.trapped_why = "trapped (no route around the sensed obstacle)"
         return None
+    current, known, added = found
     run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added))
     run.plan, run.known, run.replans, run.map_t = current, known, run.replans + 1, t
     return current.checkpoints

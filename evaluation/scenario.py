@@ -69,6 +69,7 @@ class ScenarioConfig:
     recover: bool = True  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
     max_recoveries: int = 5  # traps recovered from before a run gives up
     sensed_radius: float = 0.005  # m: an obstacle point added to the map on recovery: a disc of the IR's τ
+    sensed_near: float = 0.05  # m: where all it sensed leaves no route, recovery plans round the readings this near
     cell: float = DEFAULT_CELL  # m: the planner's bitmap cell (halved while no route exists, if ``refine``)
     refine: bool = True  # refine the cell where the map's narrow places hold no route at ``cell``
     checkpoints: str = "visible"  # the planner's checkpoint rule: visible (default) or thesis (ch. 3.2.3)
@@ -89,7 +90,7 @@ class ScenarioConfig:
                                                 and math.isfinite(self.time_limit) and self.time_limit > 0):
             raise InputError(f"scenario: time_limit must be a positive number or None, got {self.time_limit!r}")
         for name in ("checkpoint_tolerance", "settle_s", "trap_after", "trap_progress", "trap_ground",
-                     "sensed_radius", "cell", "start_reach", "pass_radius", "turn_s", "turn_tolerance"):
+                     "sensed_radius", "sensed_near", "cell", "start_reach", "pass_radius", "turn_s", "turn_tolerance"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise InputError(f"scenario: {name} must be a positive number, got {value!r}")
@@ -400,10 +401,11 @@ def replan_from(previous, known: World, position, t: float, robot, config: Scena
 
 
 def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
-              added=np.zeros((0, 2))) -> Course | None:
-    """The course on a new plan from where the robot is, on the map ``known`` (Fig. 6.5; thesis 7.1.1), its
-    first checkpoint a new target; None if the map leaves no way through."""
-    current = replan_from(course.plan, known, shell.sim.pose[:2], t, shell.robot, shell.config)
+              added=np.zeros((0, 2)), current=None) -> Course | None:
+    """The course on a new plan (``current``, or one made from where the robot is) on the map ``known`` (Fig. 6.5;
+    thesis 7.1.1), its first checkpoint a new target; None if the map leaves no way through."""
+    if current is None:
+        current = replan_from(course.plan, known, shell.sim.pose[:2], t, shell.robot, shell.config)
     if current is None:
         return None
     shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
@@ -544,12 +546,12 @@ def watch(shell: Shell, course: Course) -> Course:
     if not config.recover or course.recoveries >= config.max_recoveries:
         return replace(course, ended="trapped", trapped=True)
     course = replace(course, recoveries=course.recoveries + 1)
-    known, added = with_sensed(course.known, *sensed_points(shell.sensed, shell.body), config.sensed_radius,
-                               shell.body.sensors.noise, shell.body.sensors.resolution_m)
-    changed = replanned(shell, course, sim.t, "recovery", known, added)
-    if changed is None:
+    found = recovery(course.plan, course.known, shell.sensed, shell.body, sim.pose[:2], sim.t, config)
+    if found is None:
         return replace(course, ended="trapped (no route around the sensed obstacle)", trapped=True)
-    return replace(changed, turn_until=sim.t + config.turn_s)
+    current, known, added = found
+    return replace(replanned(shell, course, sim.t, "recovery", known, added, current),
+                   turn_until=sim.t + config.turn_s)
 
 
 def finish(shell: Shell, course: Course) -> RunRecord:
@@ -731,6 +733,28 @@ def sensed_points(sensed: list, controller: Controller, margin: float = 0.01) ->
         gap = np.linalg.norm(pts[:, :, None, :] - markers[:, None, :, :2], axis=-1)  # (ticks, m, k)
         seen &= ~np.any(gap <= markers[:, None, :, 4] + margin, axis=-1)
     return pts[seen], readings[seen]
+
+
+def recovery(previous, known: World, sensed: list, controller: Controller, position, t: float,
+             config: ScenarioConfig):
+    """Recovery's new plan from ``position`` round what the IR ``sensed`` (thesis 7.1.1): ``(plan, map, added
+    points)``, or None if nothing sensed leaves a way through.
+
+    Every still point sensed joins the map (:func:`with_sensed`); where that closes every way — the readings'
+    10 % noise scatters a far pillar's points across a gap a few millimetres wider than the robot — the plan is
+    made round the readings within ``config.sensed_near`` alone (their error is under a tenth of that), and failing
+    that on the map as it was. Why: a trap is the controller's, not proof that no way exists; ending the run there
+    lost worlds whose every gap the robot fits (issue 35, pillar forests)."""
+    points, readings = sensed_points(sensed, controller)
+    sensors = controller.sensors
+    tried = ((points, readings), (points[readings <= config.sensed_near], readings[readings <= config.sensed_near]),
+             (points[:0], readings[:0]))
+    for pts, reads in tried:
+        grown, added = with_sensed(known, pts, reads, config.sensed_radius, sensors.noise, sensors.resolution_m)
+        current = replan_from(previous, grown, np.asarray(position, float), t, controller.robot, config)
+        if current is not None:
+            return current, grown, added
+    return None
 
 
 def with_sensed(known: World, points, readings, radius: float, noise: float = 0.1,

@@ -197,6 +197,40 @@ def test_recovery_leaves_an_8_cm_doorway_open_that_its_jambs_noisy_points_would_
         plan(grown)
 
 
+def test_recovery_plans_round_the_near_readings_where_all_it_sensed_closes_every_way():
+    """The door of the test above, 8 cm between its jambs, the robot (5 cm across) before it. Sensor 2 (+10°) of
+    the short-range ring read 4 cm to a point in the middle of the door, and 1 cm to one far from it. Everything
+    sensed closes the door (the planner finds no route); with ``sensed_near`` 2 cm the recovery plans round the
+    1 cm reading alone and goes through the door; a 1 cm reading in the door closes it at every step but the
+    last, the map as it was."""
+    from evaluation.scenario import first_plan, recovery
+    from planner import NoRouteError, plan
+
+    doc = {"name": "door", "size": [1.0, 0.6], "walls": [[0.5, 0.0, 0.5, 0.255], [0.5, 0.345, 0.5, 0.6]],
+           "start": [0.2, 0.3, 0.0], "goal": [0.8, 0.3]}
+    world = parse_world(doc, "door.json")
+    ctl, config = steering(), ScenarioConfig(sensed_near=0.02)
+    ray = np.array([np.cos(np.radians(10)), np.sin(np.radians(10))])
+
+    def seen(point, reading):  # a tick on which sensor 2 read ``reading`` (m) to ``point``
+        readings = np.full(8, np.inf)
+        readings[2] = reading
+        return (0.0, np.append(np.asarray(point) - (0.025 + reading) * ray, 0.0), readings, np.zeros((0, 5)))
+
+    in_door, far_off = np.array([0.5, 0.3]), np.array([0.2, 0.1])
+    with pytest.raises(NoRouteError):
+        plan(with_sensed(world, np.array([in_door]), [0.04], 0.005)[0])
+    start = first_plan(world, KHEPERA, config)
+    found = recovery(start, world, [seen(in_door, 0.04), seen(far_off, 0.01)], ctl, (0.3, 0.3), 1.0, config)
+    assert found is not None
+    current, known, added = found
+    np.testing.assert_allclose(added, [far_off], atol=0.005)  # snapped to the 5 mm discs' grid
+    assert len(known.obstacles) == len(world.obstacles) + 1
+    assert current.checkpoints[-1].tolist() == [0.8, 0.3]
+    current, known, added = recovery(start, world, [seen(in_door, 0.01)], ctl, (0.3, 0.3), 1.0, config)
+    assert len(added) == 0 and known == world and current.checkpoints[-1].tolist() == [0.8, 0.3]
+
+
 def test_points_the_ir_saw_on_a_declared_mover_never_join_the_map():
     from evaluation.scenario import sensed_points
 
