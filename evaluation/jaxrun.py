@@ -21,8 +21,8 @@ tick. Here one batch holds one architecture's runs over many (world, seed) pairs
 The runs go through in blocks of :data:`BLOCK` (:func:`advance`), a block with no run left skipped. The planner
 stays on the host (the imperative shell, :func:`run_batch`): plans are made before the batch; the scan runs in
 chunks of ``chunk_ticks``; between chunks the host takes every waiting run through the pymunk runner's
-recovery — what its IR saw joins the planner's map (:func:`evaluation.scenario.with_sensed`), a new plan from where
-it stands (:func:`evaluation.scenario.replan_from`) — writes the new checkpoints and map into the batch's arrays,
+recovery — what its IR saw joins the planner's map and a new plan is made from where it stands
+(:func:`evaluation.scenario.recovery`) — writes the new checkpoints and map into the batch's arrays,
 and the batch goes on. A run that waits loses no simulated time, only the rest of its chunk of wall time. Batches
 (an architecture's worlds of one :func:`kind`) run :data:`THREADS` at a time (:func:`in_threads`): one compiles or
 plans while another's scan runs; a run's record does not depend on which batch runs beside it.

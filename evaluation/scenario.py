@@ -21,8 +21,8 @@ robot's motor and sensor noise), the slippery-cell planner (:mod:`planner`) and 
 5. the trap monitor (:mod:`evaluation.monitor`) reports ``trapped`` when the robot has come no closer to
    its checkpoint and reached no new ground for a set time (thesis 7.1.1, cognizant failure); with
    ``recover`` (the default), the obstacle points the robot has sensed so far that the map does not
-   explain join the planner's map (:func:`with_sensed`), the route is replanned around them from where
-   the robot is, and the robot turns on the spot to face the new route before its architecture takes
+   explain join the planner's map (:func:`recovery`, :func:`with_sensed`), the route is replanned around them
+   (around the near readings alone, or none, where they close every way) from where the robot is, and the robot turns on the spot to face the new route before its architecture takes
    over again (a trap is a balance between going on and backing off; a disc turning on the spot
    touches nothing new, and facing the new route breaks the balance).
 
@@ -738,7 +738,7 @@ def sensed_points(sensed: list, controller: Controller, margin: float = 0.01) ->
 def recovery(previous, known: World, sensed: list, controller: Controller, position, t: float,
              config: ScenarioConfig):
     """Recovery's new plan from ``position`` round what the IR ``sensed`` (thesis 7.1.1): ``(plan, map, added
-    points)``, or None if nothing sensed leaves a way through.
+    points)``, or None if not even the map as it was leaves a way through.
 
     Every still point sensed joins the map (:func:`with_sensed`); where that closes every way — the readings'
     10 % noise scatters a far pillar's points across a gap a few millimetres wider than the robot — the plan is
