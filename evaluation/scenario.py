@@ -404,8 +404,8 @@ def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
               added=np.zeros((0, 2)), current=None) -> Course | None:
     """The course on a new plan (``current``, or one made from where the robot is) on the map ``known`` (Fig. 6.5;
     thesis 7.1.1), its first checkpoint a new target; None if the map leaves no way through."""
-    if current is None:
-        current = replan_from(course.plan, known, shell.sim.pose[:2], t, shell.robot, shell.config)
+    current = replan_from(course.plan, known, shell.sim.pose[:2], t, shell.robot, shell.config) \
+        if current is None else current
     if current is None:
         return None
     shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
@@ -747,10 +747,13 @@ def recovery(previous, known: World, sensed: list, controller: Controller, posit
     lost worlds whose every gap the robot fits (issue 35, pillar forests)."""
     points, readings = sensed_points(sensed, controller)
     sensors = controller.sensors
-    tried = ((points, readings), (points[readings <= config.sensed_near], readings[readings <= config.sensed_near]),
-             (points[:0], readings[:0]))
-    for pts, reads in tried:
-        grown, added = with_sensed(known, pts, reads, config.sensed_radius, sensors.noise, sensors.resolution_m)
+    near = readings <= config.sensed_near
+    steps = (np.ones_like(near), near, np.zeros_like(near))  # nested: each keeps a subset of the one before
+    for i, keep in enumerate(steps):
+        if i and keep.sum() == steps[i - 1].sum():
+            continue  # the same points as the step before: the same plan
+        grown, added = with_sensed(known, points[keep], readings[keep], config.sensed_radius, sensors.noise,
+                                   sensors.resolution_m)
         current = replan_from(previous, grown, np.asarray(position, float), t, controller.robot, config)
         if current is not None:
             return current, grown, added
