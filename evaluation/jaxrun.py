@@ -354,12 +354,12 @@ def _bucket(n: int) -> int:
     return 1 << max(0, int(n) - 1).bit_length()
 
 
-def _sight_world(known, t: float = 0.0):
+def _sight_world(known, t: float = 0.0, avoided: tuple = ()):
     """The planner's map at ``t`` as shapes the JAX engine can measure: the known world less its unforeseen and
-    moving obstacles, with the shapes of the known events due by ``t`` (:meth:`~robots.worldfile.World.known_shapes`,
-    :func:`planner.bitmap.padded_obstacles`)."""
+    moving obstacles, with the shapes of the known events due by ``t`` and the movers' lanes a plan keeps off
+    (``avoided``; :meth:`~robots.worldfile.World.known_shapes`, :func:`evaluation.scenario.sight_of`)."""
     added = tuple(s for e in known.events if e.known and e.at_s <= t for s in e.add)
-    return replace(known, unforeseen=(), moving=(), events=(), obstacles=known.obstacles + added)
+    return replace(known, unforeseen=(), moving=(), events=(), obstacles=known.obstacles + added + tuple(avoided))
 
 
 #: Capsules a batch's planner maps keep free for the discs recovery adds (a trap typically adds tens): a map that
@@ -595,7 +595,7 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
     room = ROOM if may else 0
     scene = _scenes([r.world for r in slots], movers=max(setup.markers, 1))
     m = shape_of(scene)[3]
-    routes = Route(scene=scene, sight=_scenes([_sight_world(r.known, r.map_t) for r in slots], room),
+    routes = Route(scene=scene, sight=_scenes([_sight_world(r.known, r.map_t, r.plan.avoided) for r in slots], room),
                    checkpoints=_padded(cps, _bucket(max(len(c) for c in cps) + (SLOTS if may else 0))),
                    last=np.array([len(c) - 1 for c in cps], np.int32),
                    ticks=np.array([r.ticks for r in slots], np.int32), may_recover=np.full(len(slots), may),
@@ -687,9 +687,9 @@ def _grown(sight: Scene, runs: list, changed: list) -> Scene:
     shape, when one of them no longer fits."""
     shape = shape_of(sight)
     try:
-        rows = {i: scene_of(_sight_world(runs[i].known, runs[i].map_t), shape) for i in changed}
+        rows = {i: scene_of(_sight_world(runs[i].known, runs[i].map_t, runs[i].plan.avoided), shape) for i in changed}
     except ValueError:  # recovery's discs outgrew the padding
-        return _scenes([_sight_world(r.known, r.map_t) for r in runs], ROOM)
+        return _scenes([_sight_world(r.known, r.map_t, r.plan.avoided) for r in runs], ROOM)
     leaves, tree = jax.tree.flatten(sight)
     leaves = [np.array(a) for a in leaves]
     for i, scene in rows.items():

@@ -73,6 +73,8 @@ class ScenarioConfig:
     cell: float = DEFAULT_CELL  # m: the planner's bitmap cell (halved while no route exists, if ``refine``)
     refine: bool = True  # refine the cell where the map's narrow places hold no route at ``cell``
     checkpoints: str = "visible"  # the planner's checkpoint rule: visible (default) or thesis (ch. 3.2.3)
+    lane_margin: float | None = 0.01  # m: the planner keeps the robot this far beside a declared mover's lane
+    lane_detour: float = 1.3  # ... where the route gets at most this much longer (planner.lanes; None: it does not)
     start_reach: float = 0.06  # m: a replan may start this far from the robot (pressed into a new cushion)
     pass_radius: float = 0.1  # m: visible checkpoints: within this of one whose successor it sees, the robot
     #                           moves on to the successor
@@ -103,6 +105,16 @@ class ScenarioConfig:
                              f"{self.look_every}, {self.look_ahead}, {self.look_back}")
         if self.max_recoveries < 0:
             raise InputError(f"scenario: max_recoveries must be >= 0, got {self.max_recoveries}")
+        if self.lane_margin is not None and not (isinstance(self.lane_margin, (int, float))
+                                                 and math.isfinite(self.lane_margin) and self.lane_margin >= 0):
+            raise InputError(f"scenario: lane_margin must be a number >= 0 or None, got {self.lane_margin!r}")
+        if not (isinstance(self.lane_detour, (int, float)) and self.lane_detour >= 1):
+            raise InputError(f"scenario: lane_detour must be >= 1, got {self.lane_detour!r}")
+
+    @property
+    def lanes(self) -> tuple[float, float] | None:
+        """The planner's ``lanes`` argument (:func:`planner.plan`): ``(lane_margin, lane_detour)``, or None."""
+        return None if self.lane_margin is None else (float(self.lane_margin), float(self.lane_detour))
 
 
 #: s: the shortest default time limit (the package's fixed limit before issue 35: the named worlds' routes all take
@@ -376,7 +388,7 @@ def start(world: World, body, seed: int, config: ScenarioConfig, spec: str, on_t
                                                           config.trap_loop),
                   rec, np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32), on_tick,
                   poses=[sim.pose], times=[0.0])
-    return shell, Course(current, world, padded_obstacles(world, 0.0, robot.radius))
+    return shell, Course(current, world, sight_of(world, 0.0, current, robot.radius))
 
 
 def first_plan(world: World, robot, config: ScenarioConfig):
@@ -387,7 +399,13 @@ def first_plan(world: World, robot, config: ScenarioConfig):
         raise InputError(f"{world.name}: the robot {robot.name} (radius {robot.radius:g} m) does not fit at the start "
                          f"{list(world.start[:2])} (clearance {clear:.3f} m)")
     return plan(world, t=0.0, cell=config.cell, checkpoints=config.checkpoints, refine=config.refine,
-                padding=robot.radius)
+                padding=robot.radius, lanes=config.lanes)
+
+
+def sight_of(known: World, t: float, current, radius: float) -> tuple:
+    """The planner's map the checkpoints of ``current`` were planned on, padded by the robot's ``radius`` — the known
+    map at ``t`` and the movers' lanes the plan keeps off (``Plan.avoided``) — for the look past a checkpoint."""
+    return padded_obstacles(known, t, radius) + tuple((shape, radius) for shape in current.avoided)
 
 
 def replan_from(previous, known: World, position, t: float, robot, config: ScenarioConfig):
@@ -395,7 +413,7 @@ def replan_from(previous, known: World, position, t: float, robot, config: Scena
     the map leaves no way through."""
     try:
         return replan(previous, known, position, t, padding=robot.radius, reach=config.start_reach,
-                      refine=config.refine)
+                      refine=config.refine, lanes=config.lanes)
     except InputError:  # NoRouteError included: the change left no way through
         return None
 
@@ -410,7 +428,7 @@ def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
         return None
     shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
     shell.monitor.reset(t)
-    return replace(course, plan=current, known=known, sight=padded_obstacles(known, t, shell.robot.radius), index=0,
+    return replace(course, plan=current, known=known, sight=sight_of(known, t, current, shell.robot.radius), index=0,
                    target_id=course.target_id + 1, replans=course.replans + 1, looked_past=(0, -1))
 
 

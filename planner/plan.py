@@ -18,10 +18,12 @@ from ekm.errors import InputError
 from planner.bitmap import clearance_ok, free_cell_at, grid_cells, padded_obstacles, rasterise
 from planner.checkpoints import greedy_checkpoints, path_length
 from planner.graph import Graph, adjacency
+from planner.lanes import keeping_off
+from planner.lanes import lanes as mover_lanes
 from planner.quadtree import label_quadtree
 from planner.search import shortest_route
 from planner.slippery import label_slippery
-from planner.visibility import visible_checkpoints
+from planner.visibility import segment_slack, visible_checkpoints
 from robots.params import KHEPERA
 
 #: The decompositions: slippery cells (ch. 3.2.2) and the two baselines of docs/design.md §4.
@@ -59,6 +61,8 @@ class Plan:
         corners of a path through the same cells whose legs keep the robot's clearance
         (:mod:`planner.visibility`).
     rule : the checkpoint rule, ``"visible"`` or ``"thesis"`` (:data:`RULES`).
+    avoided : the declared movers' lanes the route keeps off (:mod:`planner.lanes`; empty unless :func:`plan`'s
+        ``lanes`` found it cheap to): part of the map the route was planned on, with the robot's radius as cushion.
 
     The thesis's checkpoints are waypoints for the reactive layer, not a collision-free polyline: a
     slippery cell need not be convex, so the straight leg between two checkpoints of one cell may cut a
@@ -77,6 +81,7 @@ class Plan:
     goal: tuple[float, float]
     checkpoints: np.ndarray
     rule: str = "thesis"
+    avoided: tuple = ()
 
     @property
     def cells(self) -> int:
@@ -132,7 +137,8 @@ MIN_CELL = 0.005
 
 
 def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: str = "slippery",
-         t: float = 0.0, padding: float = KHEPERA.radius, checkpoints: str = "visible", refine: bool = True) -> Plan:
+         t: float = 0.0, padding: float = KHEPERA.radius, checkpoints: str = "visible", refine: bool = True,
+         lanes: tuple[float, float] | None = None) -> Plan:
     """Plan checkpoints from ``start`` to ``goal`` through ``world`` on the map known at time ``t`` (s).
 
     ``start``/``goal`` default to the world's (the goal where it is at ``t``); ``padding`` (m) defaults to
@@ -142,15 +148,44 @@ def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: st
     :data:`MIN_CELL` is passed, and the plan says which cell it used (``Plan.cell``). Raises
     :class:`InputError` when start or goal lie outside the padded free space or the cell size is bad, and
     :class:`NoRouteError` when no route exists at any cell tried.
+
+    ``lanes`` = ``(margin, detour)`` keeps the route off the declared movers' lanes where that leaves the robot
+    ``margin`` (m) beside each and makes the route at most ``detour`` times as long (:func:`kept_off_lanes`); None
+    plans on the a-priori map alone.
     """
     start = _point(world.start[:2] if start is None else start, "start")
     goal = _point(world.goal_at(t) if goal is None else goal, "goal")
-    key = (world, start, goal, cell, method, t, padding, checkpoints, refine)
+
+    def make(on):
+        key = (on, start, goal, cell, method, t, padding, checkpoints, refine)
+        try:
+            hash(key)
+        except TypeError:  # an unhashable argument: plan without remembering (the pipeline reports what is wrong)
+            return _refined(*key, check=("start", "goal"))
+        return _remembered_plan(*key)
+
+    return kept_off_lanes(make, world, lanes, padding)
+
+
+def kept_off_lanes(make, world, lanes: tuple[float, float] | None, padding: float) -> Plan:
+    """``make(world)`` — or, with ``lanes`` = ``(margin, detour)``, ``make`` on ``world`` with its movers' lanes as
+    obstacles (:mod:`planner.lanes`) when that plan exists, is at most ``detour`` times as long, and every leg of it
+    leaves the robot (radius ``padding``, m) at least ``margin`` (m) beside every lane; its ``avoided`` the lanes.
+    Why: a route beside a shuttling mover's lane spares the reactive layer a head-on meeting in a corridor; one
+    round the building, or one that grazes the mover, is not worth it."""
+    plain = make(world)
+    shapes = mover_lanes(world) if lanes is not None else ()
+    if not shapes:
+        return plain
     try:
-        hash(key)
-    except TypeError:  # an unhashable argument: plan without remembering (the pipeline reports what is wrong)
-        return _refined(*key, check=("start", "goal"))
-    return _remembered_plan(*key)
+        kept = make(keeping_off(world, shapes))
+    except InputError:  # NoRouteError included; or the start or goal lies in a lane
+        return plain
+    margin, detour = lanes
+    beside = [(shape, padding) for shape in shapes]
+    ends = np.vstack([kept.start, kept.checkpoints])
+    spare = min(segment_slack(a, b, beside) for a, b in zip(ends[:-1], ends[1:]))
+    return replace(kept, avoided=shapes) if kept.length <= detour * plain.length and spare >= margin else plain
 
 
 @functools.lru_cache(maxsize=64)
@@ -166,7 +201,7 @@ def _remembered_plan(world, start, goal, cell, method, t, padding, checkpoints, 
 
 
 def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.radius, reach: float = 0.0,
-           refine: bool = True) -> Plan:
+           refine: bool = True, lanes: tuple[float, float] | None = None) -> Plan:
     """Plan again from the robot's ``position`` (x, y) on the map known at ``t`` (s) (Fig. 6.5).
 
     Keeps the method, cell size, checkpoint rule and goal of ``previous``; the slippery labelling restarts
@@ -174,10 +209,11 @@ def replan(previous: Plan, world, position, t: float, padding: float = KHEPERA.r
     its position is not required to clear the cushion (contact or sensor noise can leave it a little
     inside), only to lie within one cell of a free bitmap cell — or, with ``reach`` > 0 (m), the route
     starts at the nearest point within ``reach`` that does (a robot pressed against an obstacle just added
-    to the map stands inside its cushion). ``refine`` as in :func:`plan`.
+    to the map stands inside its cushion). ``refine`` and ``lanes`` as in :func:`plan`.
     """
-    return _refined(world, position, previous.goal, previous.cell, previous.method, t, padding, previous.rule,
-                    refine, check=("goal",), reach=reach)
+    return kept_off_lanes(lambda on: _refined(on, position, previous.goal, previous.cell, previous.method, t, padding,
+                                              previous.rule, refine, check=("goal",), reach=reach), world, lanes,
+                          padding)
 
 
 def _refined(world, start, goal, cell, method, t, padding, checkpoints, refine, check, reach: float = 0.0) -> Plan:
