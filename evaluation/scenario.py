@@ -74,7 +74,8 @@ class ScenarioConfig:
     refine: bool = True  # refine the cell where the map's narrow places hold no route at ``cell``
     checkpoints: str = "visible"  # the planner's checkpoint rule: visible (default) or thesis (ch. 3.2.3)
     lane_margin: float | None = 0.01  # m: the planner keeps the robot this far beside a declared mover's lane
-    lane_detour: float = 1.3  # ... where the route gets at most this much longer (planner.lanes; None: it does not)
+    #                                   (planner.lanes; None: the route may cross lanes, as before issue 35)
+    lane_detour: float = 1.3  # ... where that makes the route at most this much longer
     start_reach: float = 0.06  # m: a replan may start this far from the robot (pressed into a new cushion)
     pass_radius: float = 0.1  # m: visible checkpoints: within this of one whose successor it sees, the robot
     #                           moves on to the successor

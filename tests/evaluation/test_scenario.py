@@ -247,6 +247,46 @@ def test_points_the_ir_saw_on_a_declared_mover_never_join_the_map():
     np.testing.assert_allclose(pts, [hit], atol=1e-12) and np.testing.assert_allclose(r, [0.02])
 
 
+def test_the_first_plan_keeps_off_a_declared_movers_lane_unless_lanes_are_off():
+    """The corridor of tests/planner/test_lanes.py: a box shuttles down its middle, and the straight route from
+    start to goal runs along the box's lane. Both engines follow the plan that keeps off it (planner.plan's
+    ``lanes`` with the config's margin and detour); ``lane_margin=None`` the plain plan."""
+    from evaluation.jaxrun import start_run
+    from planner import plan
+    from tests.planner.test_lanes import corridor
+
+    world = corridor()
+    assert not np.array_equal(plan(world, lanes=(0.01, 1.3)).checkpoints, plan(world).checkpoints)
+    for config, lanes in [(ScenarioConfig(time_limit=0.3), (0.01, 1.3)), (ScenarioConfig(time_limit=0.3,
+                                                                                          lane_margin=None), None)]:
+        expected = plan(world, lanes=lanes)
+        rec = run_scenario(world, constant([0.0, 0.0]), seed=0, config=config)
+        np.testing.assert_array_equal(rec.plans[0].checkpoints, expected.checkpoints)
+        run = start_run(world, constant([0.0, 0.0]), 0, config, "constant")
+        np.testing.assert_array_equal(run.plan.checkpoints, expected.checkpoints)
+        assert run.plan.avoided == expected.avoided
+
+
+def test_the_look_ahead_sees_a_kept_off_lane_as_an_obstacle():
+    """The look past a checkpoint is made on the map the plan was made on: the lane, padded by the robot's radius."""
+    from evaluation.scenario import sight_of
+    from planner import plan
+    from tests.planner.test_lanes import corridor
+
+    world = corridor()
+    kept = plan(world, lanes=(0.01, 1.3))
+    sight = sight_of(world, 0.0, kept, 0.025)
+    assert (kept.avoided[0], 0.025) in sight and len(sight) == len(sight_of(world, 0.0, plan(world), 0.025)) + 1
+
+
+@pytest.mark.parametrize("bad, match", [({"lane_margin": -0.01}, "lane_margin must be a number >= 0 or None"),
+                                        ({"lane_margin": float("nan")}, "lane_margin"),
+                                        ({"lane_detour": 0.9}, "lane_detour must be >= 1")])
+def test_bad_lane_settings_are_refused_with_one_line(bad, match):
+    with pytest.raises(InputError, match=match):
+        ScenarioConfig(**bad)
+
+
 def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it():
     """Three rooms in a row; the robot is placed in the last room, from where the goal is in view: the runner
     passes the checkpoints in the doorways behind it within its first looks (every 0.5 s, three checkpoints
