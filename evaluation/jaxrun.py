@@ -422,7 +422,7 @@ def start_run(world, body, seed: int, config: ScenarioConfig, spec: str, plans: 
         if plans is not None:
             plans[key] = current
     rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
-    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
+    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy(), avoided=current.avoided))
     limit = time_limit_for(config, path_length(np.asarray(world.start[:2]), current.checkpoints), robot.max_wheel_speed)
     rec.time_limit_s = limit
     return Run(world, seed, body, current, world, rec, math.ceil(limit / robot.avoid_period - 1e-9),
@@ -489,7 +489,7 @@ def recover(run: Run, pose, t: float, config: ScenarioConfig):
         run.trapped_why = "trapped (no route around the sensed obstacle)"
         return None
     current, known, added = found
-    run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added))
+    run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added, current.avoided))
     run.plan, run.known, run.replans, run.map_t = current, known, run.replans + 1, t
     return current.checkpoints
 
@@ -500,7 +500,7 @@ def after_event(run: Run, pose, t: float, config: ScenarioConfig):
     current = replan_from(run.plan, run.known, np.asarray(pose[:2], float), t, run.body.robot, config)
     if current is None:
         return None
-    run.rec.plans.append(PlanChange(t, "event", current.checkpoints.copy()))
+    run.rec.plans.append(PlanChange(t, "event", current.checkpoints.copy(), avoided=current.avoided))
     run.plan, run.replans, run.map_t = current, run.replans + 1, t
     return current.checkpoints
 

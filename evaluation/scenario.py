@@ -138,13 +138,15 @@ def time_limit_for(config: ScenarioConfig, route_m: float, top_speed: float) -> 
 
 @dataclass(frozen=True)
 class PlanChange:
-    """A plan the robot followed from ``t``: why it was made, its checkpoints ``(k, 2)`` (goal last) and, for
-    a recovery, the sensed obstacle points ``(n, 2)`` that joined the planner's map for it."""
+    """A plan the robot followed from ``t``: why it was made, its checkpoints ``(k, 2)`` (goal last), for
+    a recovery the sensed obstacle points ``(n, 2)`` that joined the planner's map for it, and the declared movers'
+    lanes its route keeps off (``Plan.avoided``, :mod:`planner.lanes`)."""
 
     t: float
     reason: str  # "start", "event" (a known change of the map, Fig. 6.5) or "recovery" (after a trap)
     checkpoints: np.ndarray
     added: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    avoided: tuple = ()
 
 
 @dataclass
@@ -384,7 +386,7 @@ def start(world: World, body, seed: int, config: ScenarioConfig, spec: str, on_t
     sim = PymunkWorld(world, params=robot, seed=seed)
     rec = RunRecord(world=world, architecture=spec, seed=seed, period=robot.avoid_period, robot=robot)
     current = first_plan(world, robot, config)
-    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy()))
+    rec.plans.append(PlanChange(0.0, "start", current.checkpoints.copy(), avoided=current.avoided))
     shell = Shell(world, body, config, sim, TrapMonitor(config.trap_after, config.trap_progress, config.trap_ground,
                                                           config.trap_loop),
                   rec, np.array([mover_radius(m.shape) for m in world.moving], dtype=np.float32), on_tick,
@@ -427,7 +429,7 @@ def replanned(shell: Shell, course: Course, t: float, reason: str, known: World,
         if current is None else current
     if current is None:
         return None
-    shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added))
+    shell.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added, current.avoided))
     shell.monitor.reset(t)
     return replace(course, plan=current, known=known, sight=sight_of(known, t, current, shell.robot.radius), index=0,
                    target_id=course.target_id + 1, replans=course.replans + 1, looked_past=(0, -1))

@@ -166,8 +166,9 @@ def draw_run(ax, rec: RunRecord, outline_every: float = 2.0, title: str | None =
     filled at start and end; moving obstacles (and a moving goal) at the same instants in the same colour,
     faintly, with their dashed paths; the first plan's checkpoints as dots and later plans' (event or
     recovery replans) as triangles, one colour each, with the time in the legend, each with its planned
-    route dotted; the goal (a star; a moving goal also at its start, faint); collisions (red crosses), trap
-    detections (orange squares) and on recovery runs the sensed points that joined the map.
+    route dotted; the declared movers' lanes a plan keeps off (hatched); the goal (a star; a moving goal also
+    at its start, faint); collisions (red crosses), trap detections (orange squares) and on recovery runs the
+    sensed points that joined the map.
     """
     world = rec.world
     if ax is None:
@@ -229,6 +230,10 @@ def draw_run(ax, rec: RunRecord, outline_every: float = 2.0, title: str | None =
                            color=color, markeredgecolor="white" if first else "black", markeredgewidth=0.5,
                            linestyle="none", zorder=8, label=label))
 
+    lanes = list(dict.fromkeys(lane for change in rec.plans for lane in change.avoided))
+    for i, lane in enumerate(lanes):
+        draw_shape(ax, lane, dict(facecolor="none", edgecolor=purple, hatch="\\\\"), zorder=2.5, alpha=0.5,
+                   label="movers' lanes the route keeps off" if i == 0 else None)
     if rec.plans:
         ax.add_line(Line2D([], [], color="black", linestyle=":", linewidth=0.9, alpha=0.6,
                            label="planned route" + ("s" if len(rec.plans) > 1 else "")))

@@ -262,6 +262,7 @@ def test_the_first_plan_keeps_off_a_declared_movers_lane_unless_lanes_are_off():
         expected = plan(world, lanes=lanes)
         rec = run_scenario(world, constant([0.0, 0.0]), seed=0, config=config)
         np.testing.assert_array_equal(rec.plans[0].checkpoints, expected.checkpoints)
+        assert rec.plans[0].avoided == expected.avoided  # what the run plot hatches
         run = start_run(world, constant([0.0, 0.0]), 0, config, "constant")
         np.testing.assert_array_equal(run.plan.checkpoints, expected.checkpoints)
         assert run.plan.avoided == expected.avoided

@@ -12,6 +12,7 @@ from evaluation.scenario import PlanChange, RunRecord, ScenarioConfig, run_archi
 from evaluation.scenario_plot import (architecture_label, draw_run, frame_times, run_title, save_animation,
                                       save_run, sensed_points)
 from robots.controllers.spec import parse_architecture
+from robots.geometry import Polygon
 from robots.worldnames import load_world
 
 
@@ -20,6 +21,10 @@ def short_run() -> RunRecord:
     """Three simulated seconds of fusion in the world with a moving obstacle."""
     return run_architecture(load_world("three-rooms-moving"), parse_architecture("fusion"), seed=0,
                             config=ScenarioConfig(time_limit=3.0))
+
+
+#: A declared mover's lane a plan kept off (planner.lanes).
+LANE = Polygon(((0.5, 0.6), (0.9, 0.6), (0.9, 0.65), (0.5, 0.65)))
 
 
 @pytest.fixture
@@ -35,7 +40,7 @@ def eventful() -> RunRecord:
     return RunRecord(
         world=world, architecture=str(parse_architecture("fusion:beta=0.6")), seed=3, time_s=10.0, path_m=0.6,
         collisions=2, trapped=False, recoveries=1, replans=2, ended="time limit", poses=poses, times=times,
-        plans=[PlanChange(0.0, "start", first), PlanChange(6.0, "event", after_event),
+        plans=[PlanChange(0.0, "start", first, avoided=(LANE,)), PlanChange(6.0, "event", after_event, avoided=(LANE,)),
                PlanChange(8.0, "recovery", after_trap, added=np.array([[0.75, 0.35], [0.75, 0.36]]))],
         checkpoint_log=[(4.0, 0.44, 0.28)], collision_log=[(4.5, 0.37, 0.3), (5.0, 0.4, 0.3)],
         trap_log=[(8.0, 0.58, 0.3)], hits=[(7.5, np.array([[0.75, 0.35], [0.75, 0.36]]))])
@@ -94,13 +99,20 @@ def test_legend_names_replans_collisions_traps_and_sensed_points(eventful):
     assert "trap detected (1)" in texts
     assert any(t.startswith("sensed points added to the map") for t in texts)
     assert any(t.startswith("added at 6 s") for t in texts)  # the event's shape
+    assert "movers' lanes the route keeps off" in texts
+
+
+def test_a_lane_two_plans_keep_off_is_drawn_once_hatched(eventful):
+    ax = draw_run(None, eventful)
+    hatched = [p for p in ax.patches if p.get_hatch() == "\\\\"]  # events' shapes: "///"
+    assert len(hatched) == 1 and np.allclose(hatched[0].get_xy()[:4], LANE.vertices())
 
 
 def test_legend_leaves_out_what_did_not_happen(short_run):
     texts = legend_texts(draw_run(None, short_run))
     assert any(t.startswith("checkpoints") for t in texts)
-    assert not any("collision" in t or "trap" in t or "sensed" in t for t in texts)
-    assert any(t.startswith("moving obstacles") for t in texts)
+    assert not any("collision" in t or "trap" in t or "sensed" in t or "lanes" in t for t in texts)
+    assert any(t.startswith("moving obstacles") for t in texts)  # on a circle: no lane
 
 
 def test_title_names_world_architecture_seed_and_outcome(eventful):
