@@ -74,7 +74,7 @@ class ScenarioConfig:
     refine: bool = True  # refine the cell where the map's narrow places hold no route at ``cell``
     checkpoints: str = "visible"  # the planner's checkpoint rule: visible (default) or thesis (ch. 3.2.3)
     lane_margin: float | None = 0.01  # m: the planner keeps the robot this far beside a declared mover's lane
-    #                                   (planner.lanes; None: the route may cross lanes, as before issue 35)
+    #                                   (planner.lanes; None, or thesis checkpoints: as before issue 35)
     lane_detour: float = 1.3  # ... where that makes the route at most this much longer
     start_reach: float = 0.06  # m: a replan may start this far from the robot (pressed into a new cushion)
     pass_radius: float = 0.1  # m: visible checkpoints: within this of one whose successor it sees, the robot
@@ -114,8 +114,11 @@ class ScenarioConfig:
 
     @property
     def lanes(self) -> tuple[float, float] | None:
-        """The planner's ``lanes`` argument (:func:`planner.plan`): ``(lane_margin, lane_detour)``, or None."""
-        return None if self.lane_margin is None else (float(self.lane_margin), float(self.lane_detour))
+        """The planner's ``lanes`` argument (:func:`planner.plan`): ``(lane_margin, lane_detour)``; None when
+        ``lane_margin`` is None or with the thesis's checkpoints, whose set-up plans on the a-priori map alone."""
+        if self.lane_margin is None or self.checkpoints == "thesis":
+            return None
+        return float(self.lane_margin), float(self.lane_detour)
 
 
 #: s: the shortest default time limit (the package's fixed limit before issue 35: the named worlds' routes all take

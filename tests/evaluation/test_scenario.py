@@ -250,16 +250,18 @@ def test_points_the_ir_saw_on_a_declared_mover_never_join_the_map():
 def test_the_first_plan_keeps_off_a_declared_movers_lane_unless_lanes_are_off():
     """The corridor of tests/planner/test_lanes.py: a box shuttles down its middle, and the straight route from
     start to goal runs along the box's lane. Both engines follow the plan that keeps off it (planner.plan's
-    ``lanes`` with the config's margin and detour); ``lane_margin=None`` the plain plan."""
+    ``lanes`` with the config's margin and detour); ``lane_margin=None`` and the thesis's checkpoints the plain
+    plan."""
     from evaluation.jaxrun import start_run
     from planner import plan
     from tests.planner.test_lanes import corridor
 
     world = corridor()
     assert not np.array_equal(plan(world, lanes=(0.01, 1.3)).checkpoints, plan(world).checkpoints)
-    for config, lanes in [(ScenarioConfig(time_limit=0.3), (0.01, 1.3)), (ScenarioConfig(time_limit=0.3,
-                                                                                          lane_margin=None), None)]:
-        expected = plan(world, lanes=lanes)
+    for config, lanes in [(ScenarioConfig(time_limit=0.3), (0.01, 1.3)),
+                          (ScenarioConfig(time_limit=0.3, lane_margin=None), None),
+                          (ScenarioConfig(time_limit=0.3, checkpoints="thesis"), None)]:  # the thesis's set-up
+        expected = plan(world, checkpoints=config.checkpoints, lanes=lanes)
         rec = run_scenario(world, constant([0.0, 0.0]), seed=0, config=config)
         np.testing.assert_array_equal(rec.plans[0].checkpoints, expected.checkpoints)
         assert rec.plans[0].avoided == expected.avoided  # what the run plot hatches
