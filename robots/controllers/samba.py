@@ -98,6 +98,11 @@ class SambaParams:
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    squeeze: float = field(default=0.003, metadata={"help": "m added to the robot's radius instead of clearance once "
+                                                           "clearance has left no action for squeeze_s (>= clearance: "
+                                                           "never)"})
+    squeeze_s: float = field(default=2.0, metadata={"help": "s without an action at clearance before the maps are "
+                                                            "made at squeeze"})
     escape_s: float = field(default=1.5, metadata={"help": "a declared mover that would hit the robot standing where "
                                                            "it is within this many s: it drives straight ahead or back "
                                                            "out of the mover's way (0: never), s"})
@@ -106,8 +111,8 @@ class SambaParams:
         for name in ("tau_s", "avoid_ttc", "brake_s", "memory_s", "merge"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if self.full_s < 0 or self.clearance < 0 or not 0 <= self.tie < 1 or not 0 <= self.propagation <= 1:
-            raise ValueError("full_s and clearance must be >= 0, tie in [0, 1) and propagation in [0, 1]")
+        if self.full_s < 0 or self.clearance < 0 or self.squeeze < 0 or self.squeeze_s < 0 or not 0 <= self.tie < 1 or not 0 <= self.propagation <= 1:
+            raise ValueError("full_s, clearance, squeeze and squeeze_s must be >= 0, tie in [0, 1) and propagation in [0, 1]")
         if self.directions < 4 or self.speeds < 1 or self.passes < 0 or self.memory_points < 1:
             raise ValueError("directions >= 4, speeds >= 1, passes >= 0 and memory_points >= 1 are needed")
 
@@ -117,11 +122,13 @@ class SambaParams:
 
 
 class SambaState(NamedTuple):
-    """What Samba carries between ticks: the remembered IR obstacle points (stationary object markers) and
-    the world direction of the last action sent (NaN before the first), for the arbiter's hysteresis."""
+    """What Samba carries between ticks: the remembered IR obstacle points (stationary object markers), the
+    world direction of the last action sent (NaN before the first), for the arbiter's hysteresis, and since when
+    (s) the maps at ``clearance`` have had no action (NaN: they had one last tick), for the squeeze."""
 
     memory: mem.Memory
     heading: jax.Array
+    stuck_since: jax.Array
 
 
 class Tick(NamedTuple):
@@ -146,7 +153,7 @@ class Tick(NamedTuple):
 
 @cache
 def init(p: SambaParams) -> SambaState:
-    return SambaState(mem.empty(p.memory_points), jnp.asarray(jnp.nan, jnp.float32))
+    return SambaState(mem.empty(p.memory_points), jnp.asarray(jnp.nan, jnp.float32), jnp.asarray(jnp.nan, jnp.float32))
 
 
 def bind(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams):
@@ -247,20 +254,58 @@ def closer_when_stuck(i, j, go, times, obs: Observation, p: SambaParams, grid: a
     return jnp.where(use, k // score.shape[1], i), jnp.where(use, k % score.shape[1], j), go | use
 
 
-def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams = KHEPERA) -> Tick:
-    """Samba's maps and choice for one tick (the module docstring's steps 1–6); pure, so a recorded
-    ``(state, obs)`` gives the very maps the run used (:mod:`evaluation.actionmap_plot`)."""
-    grid = p.grid(robot)
-    memory, objects, valid = bind(state, obs, p, robot)
-    times = collision_times(objects, valid, p.memory_points, robot.radius + p.clearance, grid)
+def choose(goto, times, heading, theta, obs: Observation, p: SambaParams, grid: am.VelocityGrid):
+    """Steps 4–6 on the times to collision ``times``: the filtered Avoid map, the composite, and the arbiter's
+    action ``(i, j)`` with ``go`` (what it sends) and ``positive`` (the action weighs above zero)."""
     avoid = am.filter_times(am.avoid(times, p.full_s, p.tau_s), times, p.avoid_ttc)
-    goto = goto_map(obs, p, robot)
     composite = am.mav(goto, avoid)
-    theta = jnp.asarray(obs.pose[2], jnp.float32)
-    i, j, go = arbiter(composite, state.heading, theta, p, grid)
+    i, j, go = arbiter(composite, heading, theta, p, grid)
     positive = go
     if p.closer:
         i, j, go = closer_when_stuck(i, j, go, times, obs, p, grid)
+    return avoid, composite, i, j, go, positive
+
+
+def in_a_gap(points, valid, direction, length: float, half_width: float):
+    """Whether remembered ``points`` ``(n, 2)`` (robot frame, where ``valid``) lie on both sides of the way along
+    ``direction`` (rad): each side has one within ``half_width`` (m) of the line, from ``length`` behind the robot to
+    twice ``length`` ahead — the narrow place of a gap, not a wall the robot would slide along."""
+    e = jnp.stack([jnp.cos(direction), jnp.sin(direction)])
+    along = points @ e
+    lateral = e[0] * points[:, 1] - e[1] * points[:, 0]
+    beside = valid & (along >= -length) & (along <= 2.0 * length) & (jnp.abs(lateral) < half_width)
+    return jnp.any(beside & (lateral > 0)) & jnp.any(beside & (lateral < 0))
+
+
+def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams = KHEPERA) -> Tick:
+    """Samba's maps and choice for one tick (the module docstring's steps 1–6); pure, so a recorded
+    ``(state, obs)`` gives the very maps the run used (:mod:`evaluation.actionmap_plot`).
+
+    When the Avoid map at ``clearance`` has left no action to send for ``squeeze_s``, and the maps made at
+    ``squeeze`` send the robot a body's length (twice its radius) or more before any contact between remembered
+    points on both sides (:func:`in_a_gap`) — through a gap, not closer to a wall or along it — those maps drive it
+    (an extension, issue 35) until the wide ones have an action again. Why:
+    a robot in a gap of a pillar forest barely wider than its body plus twice the clearance had every way ahead
+    closed by the points of both pillars and stood until the time limit; squeezing at once, or towards a shut
+    door, drove robots into walls (``docs/reproduce/every-kind.md``)."""
+    grid = p.grid(robot)
+    memory, objects, valid = bind(state, obs, p, robot)
+    goto = goto_map(obs, p, robot)
+    theta = jnp.asarray(obs.pose[2], jnp.float32)
+    times = collision_times(objects, valid, p.memory_points, robot.radius + p.clearance, grid)
+    avoid, composite, i, j, go, positive = choose(goto, times, state.heading, theta, obs, p, grid)
+    t = jnp.asarray(obs.t, jnp.float32)
+    stuck_since = jnp.where(go, jnp.nan, jnp.where(jnp.isnan(state.stuck_since), t, state.stuck_since))
+    if p.squeeze < p.clearance:
+        tight = collision_times(objects, valid, p.memory_points, robot.radius + p.squeeze, grid)
+        squeezed = choose(goto, tight, state.heading, theta, obs, p, grid)
+        _, _, i2, j2, go2, _ = squeezed
+        free = tight[i2, j2] * jnp.asarray(grid.speed_values())[j2] >= 2.0 * robot.radius
+        gap = in_a_gap(objects[:p.memory_points, :2], valid[:p.memory_points], jnp.asarray(grid.angles())[i2],
+                       robot.radius, robot.radius + p.clearance)
+        wide = go | (t - stuck_since < p.squeeze_s) | ~(go2 & free & gap)
+        times, avoid, composite, i, j, go, positive = jax.tree.map(
+            lambda a, b: jnp.where(wide, a, b), (times, avoid, composite, i, j, go, positive), (tight, *squeezed))
     direction = jnp.asarray(grid.angles())[i]
     if p.refine:
         direction = direction + jnp.where(positive, refine(composite, i, j), 0.0) * grid.step_angle
@@ -268,7 +313,8 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     heading = jnp.where(go, wrap(theta + direction), state.heading)
     if p.guard:
         speed = forward_speed(direction, speed, composite, grid)
-    return Tick(SambaState(memory, heading), goto, avoid, composite, times, i, j, direction, speed, go, objects, valid)
+    return Tick(SambaState(memory, heading, stuck_since), goto, avoid, composite, times, i, j, direction, speed, go,
+                objects, valid)
 
 
 @partial(jax.jit, static_argnames=("p", "robot"))

@@ -12,7 +12,7 @@ import pytest
 
 from ekm.angles import wrap
 from ekm.errors import InputError
-from evaluation.scenario import run_architecture, run_scenario
+from evaluation.scenario import ScenarioConfig, run_architecture, run_scenario
 from robots.controllers import actionmaps as am
 from robots.controllers import samba
 from robots.controllers.base import Observation, velocity_to_wheels
@@ -290,3 +290,42 @@ def test_samba_steps_straight_out_of_a_movers_way():
     far = [0.5, 0.86, 0.0, -0.1, 0.025]
     np.testing.assert_allclose(np.asarray(samba.step(samba.init(p), mover_observation([far]), p=p, robot=KHEPERA)[1]),
                                np.asarray(still), atol=1e-6)
+
+
+# Samba squeezes through a gap its clearance closes (samba:squeeze, samba:squeeze_s)
+def slot_world(gap: float):
+    """An unforeseen wall across a 1.0 x 0.6 m arena at x = 0.5 with one opening ``gap`` (m) wide between its
+    faces, centred on the straight route from (0.3, 0.3) to (0.8, 0.3): the plan goes straight through it."""
+    lo, hi = 0.3 - gap / 2, 0.3 + gap / 2
+    return parse_world({"name": "slot", "size": [1.0, 0.6], "start": [0.3, 0.3, 0.0], "goal": [0.8, 0.3],
+                        "unforeseen": [{"type": "box", "center": [0.5, lo / 2], "size": [0.02, lo]},
+                                       {"type": "box", "center": [0.5, (hi + 0.6) / 2], "size": [0.02, 0.6 - hi]}]},
+                       "slot.json")
+
+
+def test_samba_squeezes_through_a_gap_narrower_than_its_body_and_two_clearances():
+    """A 6.6 cm opening: the 5 cm robot passes with 8 mm a side, but with the 1 cm clearance every way through is
+    closed (it needs 7 cm). At the default squeeze (3 mm after 2 s without an action) it goes through and stops at
+    the goal; with the squeeze off (squeeze = clearance) it noses into the opening and never passes (no
+    recovery)."""
+    world = slot_world(0.066)
+    config = ScenarioConfig(time_limit=40.0, recover=False)
+    rec = run_architecture(world, parse_architecture("samba"), seed=0, config=config)
+    assert rec.reached and rec.collisions == 0
+    off = run_architecture(world, parse_architecture("samba:squeeze=0.01"), seed=0, config=config)
+    assert not off.reached and off.poses[:, 0].max() < 0.5  # its centre never reaches the wall's middle
+
+
+@pytest.mark.parametrize("points, expected", [
+    ([[0.01, 0.033], [0.01, -0.033]], True),     # a pillar either side, beside the way: a gap
+    ([[0.01, 0.033], [0.03, 0.034]], False),     # a wall on the left only
+    ([[0.01, 0.033], [0.06, -0.033]], False),    # the right-hand point 6 cm ahead: beyond two radii
+    ([[-0.03, 0.033], [0.01, -0.033]], False),   # the left-hand point 3 cm behind: more than a radius back
+    ([[0.01, 0.036], [0.01, -0.033]], False),    # the left-hand point 3.6 cm off the line: outside 3.5 cm
+])
+def test_a_gap_is_remembered_points_on_both_sides_of_the_way_within_radius_plus_clearance(points, expected):
+    pts = jnp.asarray(points, jnp.float32)
+    assert bool(samba.in_a_gap(pts, jnp.ones(len(pts), bool), 0.0, 0.025, 0.035)) is expected
+    turned = pts @ jnp.asarray([[0.0, 1.0], [-1.0, 0.0]])  # the same scene turned by +90°, the way along +y
+    assert bool(samba.in_a_gap(turned, jnp.ones(len(pts), bool), math.pi / 2, 0.025, 0.035)) is expected
+    assert not bool(samba.in_a_gap(pts, jnp.zeros(len(pts), bool), 0.0, 0.025, 0.035))  # none valid
