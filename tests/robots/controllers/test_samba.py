@@ -57,7 +57,10 @@ def logged_run(world, arch, seed=0):
                         bool(tick.go), np.asarray(command, float), np.asarray(obs.target, float)))
             return tick.state, command
 
-        _RUNS[key] = run_scenario(world, dataclasses.replace(controller, step=step), seed=seed), log
+        # Riekki's experiments are reactive: the checkpoint is the goal straight behind the obstacle, so the plan
+        # must not keep off the standing mover's lane (ScenarioConfig.lane_margin).
+        _RUNS[key] = run_scenario(world, dataclasses.replace(controller, step=step), seed=seed,
+                                  config=ScenarioConfig(lane_margin=None)), log
     return _RUNS[key]
 
 
