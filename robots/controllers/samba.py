@@ -25,7 +25,8 @@ Every 0.128 s tick, :func:`maps` (pure; :func:`step` is it jitted, plus the whee
    their velocities; then **filtered** by time to collision (Fig. 30): actions that would collide only
    after ``avoid_ttc`` s are not inhibited, so an obstacle far along an action does not close it.
 5. **Composite** = MAV(Goto, filtered Avoid) (§3.2.7, Fig. 15): an action is positive when the checkpoint
-   would be reached before any obstacle.
+   would be reached before any obstacle. (After ``squeeze_s`` with no action, in a gap, the maps are made with a
+   smaller clearance, ``squeeze``: :func:`maps`.)
 6. **Arbiter** (§3.5): the heaviest action, with hysteresis — the actions within ``keep`` of the last
    action's direction *in the world* count their time shorter by the fraction ``tie`` (with the exponential
    weight curve, w^(1/(1 + tie))), so a jump to another direction needs a clearly better action. When the
@@ -111,8 +112,10 @@ class SambaParams:
         for name in ("tau_s", "avoid_ttc", "brake_s", "memory_s", "merge"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if self.full_s < 0 or self.clearance < 0 or self.squeeze < 0 or self.squeeze_s < 0 or not 0 <= self.tie < 1 or not 0 <= self.propagation <= 1:
-            raise ValueError("full_s, clearance, squeeze and squeeze_s must be >= 0, tie in [0, 1) and propagation in [0, 1]")
+        if min(self.full_s, self.clearance, self.squeeze, self.squeeze_s) < 0 or not 0 <= self.tie < 1 \
+                or not 0 <= self.propagation <= 1:
+            raise ValueError("full_s, clearance, squeeze and squeeze_s must be >= 0, tie in [0, 1) and propagation "
+                             "in [0, 1]")
         if self.directions < 4 or self.speeds < 1 or self.passes < 0 or self.memory_points < 1:
             raise ValueError("directions >= 4, speeds >= 1, passes >= 0 and memory_points >= 1 are needed")
 
@@ -284,10 +287,10 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     When the Avoid map at ``clearance`` has left no action to send for ``squeeze_s``, and the maps made at
     ``squeeze`` send the robot a body's length (twice its radius) or more before any contact between remembered
     points on both sides (:func:`in_a_gap`) — through a gap, not closer to a wall or along it — those maps drive it
-    (an extension, issue 35) until the wide ones have an action again. Why:
-    a robot in a gap of a pillar forest barely wider than its body plus twice the clearance had every way ahead
-    closed by the points of both pillars and stood until the time limit; squeezing at once, or towards a shut
-    door, drove robots into walls (``docs/reproduce/every-kind.md``)."""
+    (an extension, issue 35) until the wide ones have an action again. Why: a robot in a gap of a pillar forest
+    barely wider than its body plus twice the clearance had every way ahead closed by the points of both pillars
+    and stood until the time limit; squeezing at once, or towards a shut door, drove robots into walls
+    (``docs/reproduce/every-kind.md``)."""
     grid = p.grid(robot)
     memory, objects, valid = bind(state, obs, p, robot)
     goto = goto_map(obs, p, robot)
