@@ -14,7 +14,8 @@ Modules, in pipeline order: :mod:`planner.bitmap` (padded workspace → 0/−1 b
 :mod:`planner.slippery` (labelling, Fig. 3.4/3.5), :mod:`planner.quadtree` (baseline),
 :mod:`planner.graph` (connectivity graph and shared boundaries), :mod:`planner.checkpoints` (greedy rule,
 ch. 3.2.3), :mod:`planner.search` (A* over (cell, checkpoint) states), :mod:`planner.lanes` (declared movers'
-lanes a route may keep off, an extension), :mod:`planner.plan` (the pipeline), :mod:`planner.examples` (Fig. 3.3 as data, printer, random workspaces), :mod:`planner.plot`.
+lanes a route may keep off, an extension), :mod:`planner.plan` (the pipeline), :mod:`planner.examples` (Fig. 3.3
+as data, printer, random workspaces), :mod:`planner.plot`.
 Besides NumPy the planner uses the robot's shapes and radius (:mod:`robots.geometry`, :mod:`robots.params`) and
 the package's one-line errors (:mod:`ekm.errors`); :mod:`planner.plot` draws with Matplotlib (:mod:`robots.plot`).
 """

@@ -300,15 +300,21 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     t = jnp.asarray(obs.t, jnp.float32)
     stuck_since = jnp.where(go, jnp.nan, jnp.where(jnp.isnan(state.stuck_since), t, state.stuck_since))
     if p.squeeze < p.clearance:
-        tight = collision_times(objects, valid, p.memory_points, robot.radius + p.squeeze, grid)
-        squeezed = choose(goto, tight, state.heading, theta, obs, p, grid)
-        _, _, i2, j2, go2, _ = squeezed
-        free = tight[i2, j2] * jnp.asarray(grid.speed_values())[j2] >= 2.0 * robot.radius
-        gap = in_a_gap(objects[:p.memory_points, :2], valid[:p.memory_points], jnp.asarray(grid.angles())[i2],
-                       robot.radius, robot.radius + p.clearance)
-        wide = go | (t - stuck_since < p.squeeze_s) | ~(go2 & free & gap)
-        times, avoid, composite, i, j, go, positive = jax.tree.map(
-            lambda a, b: jnp.where(wide, a, b), (times, avoid, composite, i, j, go, positive), (tight, *squeezed))
+        chosen = (times, avoid, composite, i, j, go, positive)
+
+        def squeezed(_):
+            """The maps at ``squeeze`` where they send the robot through a gap; else the wide ones."""
+            tight = collision_times(objects, valid, p.memory_points, robot.radius + p.squeeze, grid)
+            narrow = choose(goto, tight, state.heading, theta, obs, p, grid)
+            _, _, i2, j2, go2, _ = narrow
+            free = tight[i2, j2] * jnp.asarray(grid.speed_values())[j2] >= 2.0 * robot.radius
+            gap = in_a_gap(objects[:p.memory_points, :2], valid[:p.memory_points], jnp.asarray(grid.angles())[i2],
+                           robot.radius, robot.radius + p.clearance)
+            return jax.tree.map(lambda a, b: jnp.where(go2 & free & gap, b, a), chosen, (tight, *narrow))
+
+        # the second maps only when the wide ones have had no action for squeeze_s (not every tick)
+        times, avoid, composite, i, j, go, positive = jax.lax.cond(
+            ~go & (t - stuck_since >= p.squeeze_s), squeezed, lambda _: chosen, None)
     direction = jnp.asarray(grid.angles())[i]
     if p.refine:
         direction = direction + jnp.where(positive, refine(composite, i, j), 0.0) * grid.step_angle
