@@ -86,6 +86,17 @@ def proximity(readings, sensors: SensorSet, xp=jnp):
     return xp.where(xp.isfinite(r), 1.0 - xp.clip(r, 0.0, sensors.range_m) / sensors.range_m, 0.0)
 
 
+def beyond_the_goal(gaps, target, final):
+    """Which obstacles lie beyond the goal (bool, the shape of ``gaps``): when the checkpoint is the goal
+    (``final``), those no nearer than it — ``gaps`` (m from the body surface: IR readings, remembered points;
+    ``inf`` = nothing) at least its distance d of u_p = ``target``. An obstacle beyond the goal cannot stand in the
+    way to it; a goal set beside a wall (the back of a niche, a corridor's end) would otherwise hold a reactive
+    avoidance off it, where the push balances the pull. The rule the extended neural fields apply to their
+    remembered obstacles (:mod:`robots.controllers.fields`), here at the goal only: a checkpoint on the way is
+    passed, not stopped at, and what lies beyond it is the way on."""
+    return jnp.asarray(final) & (jnp.asarray(gaps) >= jnp.asarray(target)[1])
+
+
 def sensor_angles(sensors: SensorSet) -> np.ndarray:
     """The sensors' directions ``(m,)`` (rad, robot frame, + = left) as an array."""
     return np.asarray(sensors.angles, dtype=np.float32)

@@ -76,6 +76,9 @@ class DamnParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    avoid: str = field(default="nearer", metadata={
+        "help": "which remembered points it avoids: all or nearer (at the goal, none beyond it; an extension)",
+        "choices": ("all", "nearer")})
 
     def __post_init__(self):
         for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "aim_s", "stop_within", "memory_s", "merge"):
@@ -179,7 +182,7 @@ def votes(state: DamnState, obs: Observation, angles, p: DamnParams, robot: Robo
     """The state after this tick's sensing and the tick's :class:`Votes`."""
     sensors = ring(robot, p.sensors)
     memory, points, valid = sense(state.memory, obs, angles, radius=robot.radius, range_m=sensors.range_m,
-                                  merge=p.merge, memory_s=p.memory_s)
+                                  merge=p.merge, memory_s=p.memory_s, nearer=p.avoid == "nearer")
     pose = jnp.asarray(obs.pose, jnp.float32)
     theta = pose[2]
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)

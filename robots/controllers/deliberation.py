@@ -120,6 +120,9 @@ class DeliberationParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    avoid: str = field(default="nearer", metadata={
+        "help": "which remembered points it avoids: all or nearer (at the goal, none beyond it; an extension)",
+        "choices": ("all", "nearer")})
 
     def __post_init__(self):
         for name in ("period", "max_s", "turn_gain", "brake_s", "stop_within", "waypoint", "halt", "detour",
@@ -308,7 +311,7 @@ def tick(state: DeliberationState, obs: Observation, angles, p: DeliberationPara
     ``max_s``), execute: (state, (v, ω))."""
     sensors = ring(robot, p.sensors)
     memory, points, valid = sense(state.memory, obs, angles, radius=robot.radius, range_m=sensors.range_m,
-                                  merge=p.merge, memory_s=p.memory_s)
+                                  merge=p.merge, memory_s=p.memory_s, nearer=p.avoid == "nearer")
     t = jnp.asarray(obs.t, jnp.float32)
     time = t >= state.due - 1e-3
     if p.level != "full":

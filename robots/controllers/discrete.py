@@ -21,6 +21,7 @@ import jax.numpy as jnp
 
 from ekm.angles import wrap
 from robots.controllers import memory as mem
+from robots.controllers.base import beyond_the_goal
 from robots.params import KHEPERA, RobotParams
 
 
@@ -72,10 +73,12 @@ def world_point(pose, target):
     return pose[:2] + target[1] * jnp.stack([jnp.cos(phi), jnp.sin(phi)])
 
 
-def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, merge: float, memory_s: float):
+def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, merge: float, memory_s: float,
+          nearer: bool = False):
     """The memory after this tick's IR (returns on a declared mover left to its marker) and every obstacle point
     in the robot's frame: ``(K + k, 2)`` points (the K remembered, then the nearest surface point of each of the
-    k declared movers) and their mask."""
+    k declared movers) and their mask — with ``nearer``, remembered points beyond the goal left out
+    (:func:`~robots.controllers.base.beyond_the_goal`; they stay remembered)."""
     pose = jnp.asarray(obs.pose, jnp.float32)
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
     readings = mem.off_movers(pose, jnp.asarray(obs.ir, jnp.float32), angles, markers, radius=radius)
@@ -86,7 +89,10 @@ def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, mer
     surface = jnp.concatenate([jnp.zeros(memory.points.shape[0], jnp.float32), markers[:, 4]])
     rel = rel * (jnp.maximum(dist - surface, 0.0) / jnp.maximum(dist, 1e-9))[:, None]
     points = rotate(rel, pose[2])
-    valid = jnp.concatenate([jnp.isfinite(memory.seen), jnp.ones(markers.shape[0], bool)])
+    remembered = jnp.isfinite(memory.seen)
+    if nearer:
+        remembered = remembered & ~beyond_the_goal(dist[:memory.points.shape[0]] - radius, obs.target, obs.final)
+    valid = jnp.concatenate([remembered, jnp.ones(markers.shape[0], bool)])
     return memory, points, valid
 
 

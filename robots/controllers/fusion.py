@@ -36,7 +36,7 @@ import jax.numpy as jnp
 
 from ekm import indirect
 from ekm.config import EKMConfig
-from robots.controllers.base import Controller, Observation, proximity
+from robots.controllers.base import Controller, Observation, beyond_the_goal, proximity
 from robots.controllers.braitenberg import avoid, z_matrix
 from robots.params import KHEPERA, RobotParams, SensorSet
 
@@ -56,6 +56,9 @@ class FusionParams:
     refresh: str = field(default="sensed", metadata={
         "help": "when target reaching recomputes c_p: clock (every period) or sensed (also every tick while an "
                 "obstacle is sensed)", "choices": ("clock", "sensed")})
+    avoid: str = field(default="nearer", metadata={
+        "help": "which readings the avoidance answers: all (ch. 4.5) or nearer (at the goal, none beyond it; an "
+                "extension)", "choices": ("all", "nearer")})
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:
@@ -81,16 +84,18 @@ def init() -> FusionState:
     return FusionState(jnp.zeros(2, jnp.float32), jnp.zeros((), jnp.float32), jnp.asarray(-1, jnp.int32))
 
 
-@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed"))
+@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer"))
 def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
-         sensors: SensorSet, on_sensed: bool = False):
-    """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR, fuse (Eq. 4.11)."""
+         sensors: SensorSet, on_sensed: bool = False, nearer: bool = False):
+    """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
+    beyond the goal), fuse (Eq. 4.11)."""
     refresh = (obs.t >= state.due - 1e-6) | (obs.target_id != state.target_id)
     if on_sensed:
         refresh = refresh | jnp.any(jnp.isfinite(obs.ir))
     c_p = jnp.where(refresh, indirect.control(ekm, obs.target, cfg)[0], state.c_p)
     due = jnp.where(refresh, obs.t + period, state.due)
-    c_o = avoid(z, proximity(obs.ir, sensors))
+    ir = jnp.where(beyond_the_goal(obs.ir, obs.target, obs.final), jnp.inf, obs.ir) if nearer else obs.ir
+    c_o = avoid(z, proximity(ir, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
     return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32)), c
 
@@ -101,5 +106,5 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
     robot.substeps(params.period)  # a whole number of physics sub-steps, or ValueError
     z = jnp.asarray(z_matrix(sensors, params.cross, params.same))
     run = partial(step, ekm=ekm, z=z, cfg=cfg, beta=params.beta, period=params.period, sensors=sensors,
-                  on_sensed=params.refresh == "sensed")
+                  on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer")
     return Controller(name="fusion", spec=spec, sensors=sensors, init=init, step=run, params=params, robot=robot)

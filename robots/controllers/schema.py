@@ -83,7 +83,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from robots.controllers.base import Controller, Observation, on_ring, velocity_to_wheels
+from robots.controllers.base import Controller, Observation, beyond_the_goal, on_ring, velocity_to_wheels
 from robots.params import KHEPERA, RobotParams
 
 
@@ -113,6 +113,9 @@ class SchemaParams:
     persistence: float = field(default=2.048, metadata={
         "help": "noise: s a random direction persists before the next is drawn (Arkin's p)"})
     seed: int = field(default=0, metadata={"help": "noise: seed of the PRNG key"})
+    avoid: str = field(default="nearer", metadata={
+        "help": "which readings avoid-static-obstacle answers: all (Arkin) or nearer (at the goal, none beyond "
+                "it; an extension)", "choices": ("all", "nearer")})
 
     def __post_init__(self):
         for name in ("goal_gain", "slow", "influence", "persistence"):
@@ -206,7 +209,8 @@ def schemas(state: SchemaState, obs: Observation, angles, p: SchemaParams,
             radius: float) -> tuple[SchemaState, Vectors]:
     """Every schema's vector for one tick and their sum (Arkin ch. 4.4.2: vector summation)."""
     goal = move_to_goal(obs.target, p)
-    avoid = avoid_static(obs.ir, angles, p)
+    ir = jnp.where(beyond_the_goal(obs.ir, obs.target, obs.final), jnp.inf, obs.ir) if p.avoid == "nearer" else obs.ir
+    avoid = avoid_static(ir, angles, p)
     markers = avoid_markers(obs.markers, obs.pose, radius, p)
     state, wander = noise(state, obs, p)
     return state, Vectors(goal, avoid, markers, wander, goal + avoid + markers + wander)

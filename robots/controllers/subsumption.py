@@ -118,6 +118,9 @@ class SubsumptionParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    avoid: str = field(default="nearer", metadata={
+        "help": "which remembered points it avoids: all or nearer (at the goal, none beyond it; an extension)",
+        "choices": ("all", "nearer")})
 
     def __post_init__(self):
         for name in ("cruise", "slow", "creep", "arc_speed", "arc_turn", "spin", "back", "near", "flee", "halt",
@@ -230,7 +233,7 @@ def layers(state: SubsumptionState, obs: Observation, angles, p: SubsumptionPara
     """Every layer for one tick, suppression and inhibition (the module docstring)."""
     t = jnp.asarray(obs.t, jnp.float32)
     memory, points, seen = sense(state.memory, obs, angles, radius=radius, range_m=range_m, merge=p.merge,
-                                 memory_s=p.memory_s)
+                                 memory_s=p.memory_s, nearer=p.avoid == "nearer")
 
     # wander: a random response of (cruise, arc-left, arc-right), redrawn every ``persistence`` s
     key = state.key

@@ -4,8 +4,11 @@ import jax.numpy as jnp
 import numpy as np
 
 from ekm import indirect
+from evaluation.scenario import ScenarioConfig, run_architecture
 from robots.controllers import fusion
+from robots.controllers.spec import parse_architecture
 from tests.robots.controllers.observations import observation
+from tests.robots.controllers.worlds import dead_end
 
 
 def fusion_controller(signed_map, **params):
@@ -44,3 +47,14 @@ def test_fusion_with_refresh_sensed_recomputes_target_reaching_while_an_obstacle
         held = np.asarray(state.c_p)
         c_new, _ = indirect.control(signed_map[0], jnp.asarray([-1.0, 0.1]), signed_map[1])
         assert np.allclose(held, np.asarray(c_new)) == changes
+
+
+def test_fusion_reaches_a_goal_beside_a_wall_only_when_it_avoids_nothing_beyond_the_goal():
+    """The goal 1.5 cm (body to wall) from a wall: every forward sensor reads the wall there (5 cm range). Avoiding
+    every reading (ch. 4.5), (1 − β) Z u_o holds the robot more than a centimetre off the goal for the whole run;
+    avoiding none beyond the goal, it stops within the 5 mm of ch. 6.2.1, untouched."""
+    config = ScenarioConfig(time_limit=30.0, recover=False)
+    near = run_architecture(dead_end(0.015), parse_architecture("fusion"), seed=0, config=config)
+    assert near.reached and near.collisions == 0 and near.final_distance_m < 0.005
+    every = run_architecture(dead_end(0.015), parse_architecture("fusion:avoid=all"), seed=0, config=config)
+    assert not every.arrived and every.collisions == 0 and every.final_distance_m > 0.01

@@ -16,6 +16,7 @@ from robots.controllers.spec import parse_architecture
 from robots.params import KHEPERA, LONG_RANGE
 from robots.worldfile import parse_world
 from robots.worldnames import load_world
+from tests.robots.controllers.worlds import dead_end
 
 P = schema.SchemaParams()
 ANGLES = jnp.asarray(LONG_RANGE.angles, jnp.float32)  # 0° first, 30° apart, + = left
@@ -232,3 +233,15 @@ def test_without_noise_an_obstacle_straight_across_the_way_is_a_local_minimum_an
     for seed in range(3):
         free = run_scenario(world, schema.build(dataclasses.replace(P, seed=seed), robot=IDEAL), config=config)
         assert free.reached and free.collisions == 0 and free.time_s < 15.0
+
+
+def test_the_robot_stops_at_a_goal_beside_a_wall_only_when_nothing_beyond_the_goal_repels_it():
+    """A goal 1.5 cm (body to wall) before a wall straight ahead (:func:`~tests.robots.controllers.worlds.dead_end`). Arkin's laws balance
+    move-to-goal against one point straight ahead at g* = 23.3 mm from the body (above), so repelled by every
+    reading the robot stops at least g* − 15 mm = 8.3 mm short of the goal; repelled by none beyond the goal it
+    stops within 5 mm of it."""
+    config = ScenarioConfig(time_limit=30.0, recover=False)
+    near = run_architecture(dead_end(0.015), parse_architecture("schema"), seed=0, config=config)
+    assert near.reached and near.collisions == 0 and near.final_distance_m < 0.005
+    every = run_architecture(dead_end(0.015), parse_architecture("schema:avoid=all"), seed=0, config=config)
+    assert not every.arrived and every.collisions == 0 and every.final_distance_m > 0.0083
