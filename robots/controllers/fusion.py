@@ -43,7 +43,8 @@ from robots.params import KHEPERA, RobotParams, SensorSet
 
 @dataclass(frozen=True)
 class FusionParams:
-    """Parameters of command fusion; the defaults are the thesis's ch. 6.2.1 set-up."""
+    """Parameters of command fusion; the defaults are the thesis's ch. 6.2.1 set-up but ``avoid`` (``nearer``, an
+    extension: at the goal nothing beyond it is avoided; ``all`` is ch. 4.5's)."""
 
     sensors: str = field(default="short", metadata={"help": "IR ring: short (8 Khepera sensors, 5 cm) or long "
                                                             "(12 around, 17.5 cm)", "choices": ("short", "long")})
