@@ -584,7 +584,10 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
     """:func:`run_batch` for runs of one :func:`kind`, ``setup`` set for it."""
     config = setup.config
     b = len(runs)
-    blk = min(BLOCK, b)
+    # blocks of two runs at least: XLA compiles a vmap of one run as unbatched code, whose float rounding differs
+    # in the last bit from the batched code every wider block shares, so a lone run would end otherwise than the
+    # same run in a batch (a run is a function of its job alone, docs/design.md §5)
+    blk = min(BLOCK, max(b, 2))
     slots = runs + [runs[0]] * (-b % blk)  # padding to whole blocks: copies of run 0 that never run
     controls, arrays = controls + [controls[0]] * (len(slots) - b), arrays + [arrays[0]] * (len(slots) - b)
     ids = np.where(np.arange(len(slots)) < b, np.arange(len(slots)), -1)
