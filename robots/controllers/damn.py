@@ -19,7 +19,11 @@ with a non-zero turn turns on the spot.
 
 - **avoid** (obstacle points: the IR memory and the declared movers, :func:`~robots.controllers.discrete.sense`):
   heading k gets −(1 − min(1, f_k / ``look``)), f_k the free distance the body would drive along φ_k before
-  coming within ``clearance`` of a point (:func:`~robots.controllers.discrete.free_ahead`); speed j gets
+  coming within ``clearance`` of a point (:func:`~robots.controllers.discrete.free_ahead`) — with ``avoid=nearer``
+  (an extension, issue 35) the heading nearest the checkpoint's direction looks only as far as the checkpoint,
+  min(``look``, d), and at the goal the points beyond it are left out: nothing beyond the checkpoint
+  blocks the way to it (a checkpoint 5 cm behind the robot at a corridor's bend, the bend's wall 9 cm behind,
+  held the way to it closed and the robot stood); speed j gets
   −min(1, (v_j ``brake_s`` − f_0) / (v_j ``brake_s``)) when driving straight on at v_j for ``brake_s``
   would pass the free distance f_0 straight ahead (0 otherwise). A declared mover is also projected
   along its velocity: heading k (driven at c*) and speed j (straight on) get −(1 − τ / ``mover_s``) when
@@ -77,8 +81,8 @@ class DamnParams:
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
     avoid: str = field(default="nearer", metadata={
-        "help": "which remembered points it avoids: all or nearer (at the goal, none beyond it; an extension)",
-        "choices": ("all", "nearer")})
+        "help": "avoid: all, or nearer (the way to the checkpoint looks only as far as the checkpoint, and at the "
+                "goal no point beyond it counts; an extension)", "choices": ("all", "nearer")})
 
     def __post_init__(self):
         for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "aim_s", "stop_within", "memory_s", "merge"):
@@ -154,7 +158,11 @@ def vote(points, valid, target, final, theta, last, p: DamnParams, robot: RobotP
     c = robot.max_wheel_speed
     free = free_along(points, valid, p, robot.radius)
     # avoid
-    blocked = -(1.0 - jnp.minimum(free / p.look, 1.0))
+    # with avoid=nearer, nothing beyond the checkpoint blocks the way to it: the heading nearest its direction (both,
+    # midway between two) needs room only as far as the checkpoint
+    toward = jnp.abs(wrap(phi - target[0])) <= jnp.pi / p.turns
+    reach = jnp.where(toward & (p.avoid == "nearer"), jnp.minimum(p.look, target[1]), p.look)
+    blocked = -(1.0 - jnp.minimum(free / reach, 1.0))
     travel = v * p.brake_s
     slow_down = -jnp.clip((travel - free_ahead(points, valid, robot.radius, p.clearance)) / jnp.maximum(travel, 1e-9),
                           0.0, 1.0)

@@ -94,3 +94,23 @@ def test_keep_heading_counts_in_the_world_frame():
     state = damn.init(P)._replace(heading=jnp.float32(math.pi / 4))
     _, v = tick(long_ring(s0=0.035), state=state, pose=(0.5, 0.5, math.pi / 2))
     assert int(v.turn_winner) == 9
+
+
+@pytest.mark.parametrize("avoid, winner, behind", [
+    ("nearer", 0, 0.0),                          # the way back to the checkpoint is open as far as it
+    ("all", STRAIGHT, -(1 - 0.055 / 0.12)),      # blocked 5.5 cm along it: the robot faces on, and stands
+])
+def test_a_wall_beyond_the_checkpoint_does_not_close_the_way_to_it(avoid, winner, behind):
+    """A corridor's bend: the checkpoint 5 cm straight behind the robot, the bend's wall 9 cm behind (points at x =
+    −0.09), the corridor's walls 4.5 cm either side. Straight behind (φ_0 = −π) the body comes within the 1 cm
+    clearance of the point (−0.09, 0) after 9 − 2.5 − 1 = 5.5 cm. Looking only as far as the checkpoint (5 cm) that
+    heading is open, and go-to-checkpoint's vote 1 wins it; looking 12 cm, avoid votes 3 · −(1 − 5.5/12) against
+    it and straight ahead (goto 0, nothing in the way) wins, at speed 0 with the checkpoint behind."""
+    behind_wall = [(-0.09, y) for y in (-0.04, -0.02, 0.0, 0.02, 0.04)]
+    sides = [(x, s * 0.045) for x in np.arange(-0.08, 0.081, 0.02) for s in (-1, 1)]
+    points = jnp.asarray(behind_wall + sides, jnp.float32)
+    p = damn.DamnParams(avoid=avoid)
+    v = damn.vote(points, jnp.ones(len(points), bool), jnp.asarray([math.pi, 0.05], jnp.float32), False, 0.0,
+                  jnp.nan, p, KHEPERA)
+    assert int(v.turn_winner) == winner and int(v.speed_winner) == 0
+    np.testing.assert_allclose(float(v.turn[0][0]), behind, atol=1e-4)
