@@ -97,6 +97,12 @@ def beyond_the_goal(gaps, target, final):
     return jnp.asarray(final) & (jnp.asarray(gaps) >= jnp.asarray(target)[1])
 
 
+def readings_to_the_goal(obs: Observation):
+    """The IR readings ``(m,)`` of ``obs`` with those beyond the goal (:func:`beyond_the_goal`) read as nothing
+    (``inf``): what a reactive avoidance answers with ``avoid=nearer``."""
+    return jnp.where(beyond_the_goal(obs.ir, obs.target, obs.final), jnp.inf, obs.ir)
+
+
 def sensor_angles(sensors: SensorSet) -> np.ndarray:
     """The sensors' directions ``(m,)`` (rad, robot frame, + = left) as an array."""
     return np.asarray(sensors.angles, dtype=np.float32)

@@ -36,7 +36,7 @@ import jax.numpy as jnp
 
 from ekm import indirect
 from ekm.config import EKMConfig
-from robots.controllers.base import Controller, Observation, beyond_the_goal, proximity
+from robots.controllers.base import Controller, Observation, proximity, readings_to_the_goal
 from robots.controllers.braitenberg import avoid, z_matrix
 from robots.params import KHEPERA, RobotParams, SensorSet
 
@@ -95,8 +95,7 @@ def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: 
         refresh = refresh | jnp.any(jnp.isfinite(obs.ir))
     c_p = jnp.where(refresh, indirect.control(ekm, obs.target, cfg)[0], state.c_p)
     due = jnp.where(refresh, obs.t + period, state.due)
-    ir = jnp.where(beyond_the_goal(obs.ir, obs.target, obs.final), jnp.inf, obs.ir) if nearer else obs.ir
-    c_o = avoid(z, proximity(ir, sensors))
+    c_o = avoid(z, proximity(readings_to_the_goal(obs) if nearer else obs.ir, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
     return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32)), c
 

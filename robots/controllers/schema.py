@@ -83,7 +83,7 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from robots.controllers.base import Controller, Observation, beyond_the_goal, on_ring, velocity_to_wheels
+from robots.controllers.base import Controller, Observation, on_ring, readings_to_the_goal, velocity_to_wheels
 from robots.params import KHEPERA, RobotParams
 
 
@@ -209,8 +209,7 @@ def schemas(state: SchemaState, obs: Observation, angles, p: SchemaParams,
             radius: float) -> tuple[SchemaState, Vectors]:
     """Every schema's vector for one tick and their sum (Arkin ch. 4.4.2: vector summation)."""
     goal = move_to_goal(obs.target, p)
-    ir = jnp.where(beyond_the_goal(obs.ir, obs.target, obs.final), jnp.inf, obs.ir) if p.avoid == "nearer" else obs.ir
-    avoid = avoid_static(ir, angles, p)
+    avoid = avoid_static(readings_to_the_goal(obs) if p.avoid == "nearer" else obs.ir, angles, p)
     markers = avoid_markers(obs.markers, obs.pose, radius, p)
     state, wander = noise(state, obs, p)
     return state, Vectors(goal, avoid, markers, wander, goal + avoid + markers + wander)
