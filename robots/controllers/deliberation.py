@@ -20,7 +20,10 @@ schema          parameters                     every tick
 
 Sahota's *collision detection subsystem* runs beside every schema: a point within ``halt`` of the body on
 the side it drives to (ahead of the axle, or behind it when backing), or in the corridor the body sweeps
-(half-width radius + ``margin``) within ``halt`` + one tick's travel, hands control to stop.
+(half-width radius + ``margin``) within ``halt`` + one tick's travel, hands control to stop — unless the servo or
+follow path still has more than :data:`FACING` to turn to face its way: then it turns on the spot, which sweeps
+nothing, and runs on (an extension, issue 35: in a corridor 8.5 cm wide the robot that had to turn 40° at its
+start stood, stopped and re-chosen every tick, until the trap monitor fired).
 
 **The deliberator** (§3.3, Table 4's form): each behaviour selects a schema, computes its parameters and
 bids in [0, 10] — a base bid plus and minus weighted factors in [0, 1] (§4.2.3); the highest bid wins, and
@@ -82,6 +85,8 @@ from robots.params import KHEPERA, RobotParams
 #: Action schemas, by index.
 SCHEMAS = ("idle", "stop", "servo", "follow path")
 IDLE, STOP, SERVO, PATH = range(len(SCHEMAS))
+#: rad: a servo or follow path with more than this to turn still turns on the spot where collision detection stops it.
+FACING = 0.2
 #: Behaviours, by index (also no-wit's fixed cycle).
 BEHAVIOURS = ("go to checkpoint", "go round", "back away", "wait")
 GOTO, ROUND, BACK, WAIT = range(len(BEHAVIOURS))
@@ -300,8 +305,9 @@ def execute(state: DeliberationState, points, valid, obs: Observation, p: Delibe
     danger = jnp.any(valid & (way[:, 0] > 0.0) & (gap < p.halt)) | jnp.any(
         in_the_way(way, valid, robot.radius, p.margin, reach))
     moving = (schema == SERVO) | (schema == PATH)
-    ends = ((schema == SERVO) & servo_done) | ((schema == PATH) & path_done) | (moving & danger)
-    v, w = jnp.where(ends, 0.0, v), jnp.where(ends, 0.0, w)
+    turn = moving & danger & (jnp.abs(w) >= p.turn_gain * FACING)  # still to face its way: turn on the spot
+    ends = ((schema == SERVO) & servo_done) | ((schema == PATH) & path_done) | (moving & danger & ~turn)
+    v, w = jnp.where(ends | turn, 0.0, v), jnp.where(ends, 0.0, w)
     following = jnp.select([ends, schema == STOP], [STOP, IDLE], schema)  # stop hands over to idle
     return action._replace(schema=jnp.int32(following)), i, (v, w)
 

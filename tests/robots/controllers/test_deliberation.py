@@ -140,3 +140,18 @@ def test_a_ruling_go_round_plans_afresh_when_its_leg_becomes_blocked():
     ruling, action, new = deliberate(aside, *points_of(blocked), blocked, P, R)
     assert int(ruling) == rd.ROUND and not bool(new)
     np.testing.assert_allclose(np.asarray(action.path), [[0.5, 0.7], [0.8, 0.6]], atol=1e-6)
+
+
+@pytest.mark.parametrize("alpha, schema, w", [
+    (0.7, rd.SERVO, 4.0 * 0.7),  # 40° to turn: it turns on the spot (ω = turn_gain α) and the servo runs on
+    (0.0, rd.STOP, 0.0),         # facing the way already: it stops, as collision detection always did
+])
+def test_collision_detection_stops_the_drive_but_lets_the_servo_turn_on_the_spot(alpha, schema, w):
+    """A point 2 cm ahead of the body (past ``halt``, 1 cm) is in the corridor the servo would sweep this tick
+    (0.16 cos 0.7 = 0.122 m/s: 1 + 1.6 cm). A disc turning on the spot sweeps nothing, so a servo that has 0.7 rad
+    to turn keeps turning, without driving; one facing its checkpoint stops."""
+    obs = observation(long_ring(s0=0.02), target=(alpha, 0.27))
+    state = rd.init(P)._replace(action=rd._action(rd.SERVO))
+    action, _, (v, turn) = execute_jit(state, *points_of(obs), obs, P, KHEPERA)
+    assert int(action.schema) == schema and float(v) == 0.0
+    assert float(turn) == pytest.approx(w, abs=1e-5)
