@@ -27,9 +27,12 @@ def build(family, seed: int, difficulty: float | None, name: str):
     :func:`robots.generator.generate`)."""
     from robots.generator.reach import reach
 
+    from ekm.errors import InputError
+
     rng = np.random.default_rng(seed)
     drawn = rng.uniform()  # always drawn, so a given difficulty leaves the rest of the stream as it was
     level = round(drawn if difficulty is None else difficulty, 4)
+    why: dict[str, int] = {}  # why the sub-seeds were refused, and how often
     for attempt in range(ATTEMPTS):
         if attempt:
             rng = np.random.default_rng([seed, attempt])
@@ -39,16 +42,22 @@ def build(family, seed: int, difficulty: float | None, name: str):
             doc = tidy({"name": name, **sym.doc(layout.doc)})
             if layout.blockers:
                 doc = close_doors(doc, [tidy(sym.shape(c)) for c in layout.candidates], layout.blockers, rng)
-        except Retry:
+        except Retry as refused:
+            reason = str(refused) or "the layouts drawn did not fit"
+            why[reason] = why.get(reason, 0) + 1
             continue
         world = parse_world(doc, name)
         found = reach(world)
         if not found.solvable:
+            reason = "the generator's search found no route for the robot's disc"
+            why[reason] = why.get(reason, 0) + 1
             continue
         doc["difficulty"] = {"family": family.name, "seed": seed, "level": level, **found.measures(),
                              "traps": layout.traps, "movers": len(world.moving)}
         return parse_world(doc, name)
-    raise RuntimeError(f"{name}: no solvable layout in {ATTEMPTS} attempts")
+    reason, times = max(why.items(), key=lambda item: item[1])
+    raise InputError(f"{name}: no world of this spelling from seed {seed}: {reason} ({times} of {ATTEMPTS} layouts "
+                     "drawn); try another seed or family")
 
 
 def tidy(value):

@@ -22,7 +22,9 @@ ARENA = (0.8, 2.5)  # m: the smallest and largest side of an arena
 
 
 class Retry(Exception):
-    """The layout drawn does not fit (too big, overlapping, no route): try the next sub-seed."""
+    """The layout drawn does not fit (too big, overlapping, no route): try the next sub-seed. Its message, when
+    given, says why in words a user can act on; :func:`robots.generator.build.build` reports it when no sub-seed
+    fits."""
 
 
 @dataclass

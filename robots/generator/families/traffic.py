@@ -13,6 +13,8 @@ from robots.generator.layout import R, T, Layout, Retry, along, polyline_length,
 from robots.geometry import segment_distance
 
 TOP_SPEED = 0.16  # m/s: the Khepera's c*; the fastest movers are nearly as fast
+RADII = (0.02, 0.035)  # m: the movers' radii are drawn between these
+PASS = 0.04  # m to spare when the robot passes a mover at an end of its line
 
 
 def layout(rng, level: float) -> Layout:
@@ -54,10 +56,10 @@ def overlay(rng, level: float, made: Layout, n: int | None = None) -> Layout:
             break
         p, u = along(route, rng.uniform(0.2, length - 0.2))
         normal = np.array([-u[1], u[0]])
-        rb = rng.uniform(0.02, 0.035)
+        rb = rng.uniform(*RADII)
         ends = [_free_end(world, p, sign * normal, rb) for sign in (1, -1)]
         a, b = ends
-        if math.dist(a, b) < 2 * rb + 2 * R + 0.04:
+        if math.dist(a, b) < 2 * rb + 2 * R + PASS:
             continue
         if any(segment_distance(np.asarray(q, float), a, b) < R + rb + 0.05 for q in (doc["start"][:2], doc["goal"])):
             continue
@@ -71,7 +73,8 @@ def overlay(rng, level: float, made: Layout, n: int | None = None) -> Layout:
                                                 "bounce": True}})
         placed += 1
     if placed < min(n, 1):
-        raise Retry
+        raise Retry(f"traffic found no place on the route to lay a mover across it (one needs {2 * RADII[0] + 2 * R + PASS:.2f}"
+                    " m of free space across the route at least, for the robot to pass it)")
     return Layout({**doc, "moving": moving}, made.traps, made.blockers, made.candidates)
 
 

@@ -90,6 +90,13 @@ def test_a_world_the_planner_cannot_route_through_is_one_line(capsys, tmp_path):
     assert status == 2 and "no route from start (0.2, 0.25) to goal (0.8, 0.25)" in err and err.count("\n") == 1
 
 
+def test_a_combined_family_no_world_of_fits_is_one_line(capsys):
+    # corridor:0's passage is too narrow for a mover across it and the 5 cm robot to pass each other (13 cm at least)
+    status, out, err = run(capsys, "--world", "corridor+traffic:0", "--architecture", "samba")
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith("error: corridor+traffic:0: no world of this spelling from seed 0: traffic found no place")
+
+
 def test_a_start_inside_an_obstacle_is_one_line(capsys, tmp_path):
     inside = bad_world(tmp_path, "inside", {"name": "inside", "size": [1.0, 1.0], "start": [0.5, 0.5, 0.0],
                                             "goal": [0.8, 0.8],

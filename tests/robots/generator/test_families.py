@@ -125,8 +125,26 @@ def test_a_world_without_a_route_is_never_returned(monkeypatch):
     w = generate("traps", 3)
     assert answers == [False, True] and w != plain and real(w).solvable
     monkeypatch.setattr(reach_module, "reach", lambda world, **kw: reach_module.Reach(False, 1.0))
-    with pytest.raises(RuntimeError, match=f"no solvable layout in {ATTEMPTS} attempts"):
+    with pytest.raises(InputError, match=f"traps:3: .*found no route for the robot's disc \\({ATTEMPTS} of {ATTEMPTS} "):
         generate("traps", 3)
+
+
+def test_a_spelling_no_layout_fits_names_the_commonest_reason(monkeypatch):
+    from robots.generator.build import ATTEMPTS
+    from robots.generator.layout import Retry
+
+    maze, calls = FAMILIES["maze"], []
+
+    def refused(rng, level):  # two reasons, the second twice as often
+        calls.append(level)
+        raise Retry("too narrow" if len(calls) % 3 else "too wide")
+
+    monkeypatch.setitem(FAMILIES.built_in(), "maze", Family("maze", refused, maze.summary))
+    with pytest.raises(InputError) as caught:
+        generate("maze", 5)
+    assert len(calls) == ATTEMPTS == 50
+    assert str(caught.value) == ("maze:5: no world of this spelling from seed 5: too narrow (34 of 50 layouts drawn); "
+                                 "try another seed or family")
 
 
 def test_seeds_span_the_difficulties():
