@@ -33,11 +33,14 @@ def load_world(name_or_path: str | Path) -> World:
         source = text_source
     else:
         if not path.exists() and path.suffix != ".json":
-            from robots.generator import generate, parse_spelling
+            from robots.generator import generate, parse_spelling, unknown_family
 
             spelt = parse_spelling(text_source)
             if spelt is not None:
                 return generate(*spelt)
+            why = unknown_family(text_source)
+            if why is not None:
+                raise InputError(f"{text_source}: {why}")
         if not path.is_file():
             from robots.spelling import did_you_mean
 

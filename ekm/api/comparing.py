@@ -100,7 +100,7 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
     """The generated worlds of ``suite`` — ``"FAMILY:COUNT[,FAMILY:COUNT...]"`` or a list of such items — as
     spellings ``FAMILY:SEED`` with seeds ``first_seed … first_seed + COUNT − 1`` for each family (seeds from
     1000 on are the test seeds: no parameter of the package was chosen on them)."""
-    from robots.generator import FAMILIES, family_of
+    from robots.generator import family_of, no_family
 
     items = [t.strip() for t in suite.split(",")] if isinstance(suite, str) else [str(t) for t in suite]
     first_seed = whole(first_seed, "--world-seed", _PROG, strict=False)
@@ -108,10 +108,7 @@ def suite_worlds(suite, first_seed: int = 1000) -> list[str]:
     for item in items:
         family, sep, count = item.partition(":")
         if family_of(family) is None:
-            from robots.spelling import did_you_mean
-
-            raise InputError(f"--suite {item!r}: unknown family {family!r}{did_you_mean(family, FAMILIES)} "
-                             f"(families: {', '.join(FAMILIES)})")
+            raise InputError(f"--suite {item!r}: {no_family(family)}")
         try:
             n = int(count) if sep else -1
         except ValueError:

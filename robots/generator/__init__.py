@@ -70,6 +70,27 @@ def family_of(name: str) -> Family | None:
     return Family(name, layout, f"{base.summary}; with " + "; with ".join(f.summary for f in over))
 
 
+def no_family(name: str) -> str:
+    """Why :func:`family_of` finds no family ``name``, in one line: a part unknown (with the families), or one that
+    cannot be laid over another's world (with those that can)."""
+    from robots.spelling import did_you_mean
+
+    parts = str(name).split("+")
+    unknown = [p for p in parts if p not in FAMILIES]
+    if unknown:
+        return f"unknown world family {unknown[0]!r}{did_you_mean(unknown[0], FAMILIES)} (families: {', '.join(FAMILIES)})"
+    fixed = next(p for p in parts[1:] if FAMILIES[p].overlay is None)
+    return (f"{fixed} cannot be laid over another family's world (after a '+' only "
+            f"{', '.join(n for n, f in FAMILIES.all().items() if f.overlay)})")
+
+
+def unknown_family(text: str) -> str | None:
+    """:func:`no_family` of ``text`` spelt as a generated world (``FAMILY:SEED[:D]``) whose family is none; None when
+    ``text`` is not such a spelling or its family is known."""
+    m = _SPELLING.fullmatch(str(text))
+    return None if m is None or family_of(m.group(1)) is not None else no_family(m.group(1))
+
+
 def spelling(family: str, seed: int, difficulty: float | None = None) -> str:
     """The name of a generated world: ``FAMILY:SEED`` or ``FAMILY:SEED:D`` (D as :func:`generate` rounds it)."""
     return f"{family}:{seed}" if difficulty is None else f"{family}:{seed}:{round(float(difficulty), 4):g}"
@@ -104,11 +125,7 @@ def generate(family: str, seed: int, difficulty: float | None = None):
 
     chosen = family_of(family)
     if chosen is None:
-        from robots.spelling import did_you_mean
-
-        raise InputError(f"unknown world family {family!r}{did_you_mean(family, FAMILIES)} (families: "
-                         f"{', '.join(FAMILIES)}; combined A+B where B can be laid over: "
-                         f"{', '.join(n for n, f in FAMILIES.all().items() if f.overlay)})")
+        raise InputError(no_family(family))
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
         raise InputError(f"{family}: the seed must be a whole number >= 0, got {seed!r}")
     if difficulty is not None and (isinstance(difficulty, bool) or not isinstance(difficulty, numbers.Real)

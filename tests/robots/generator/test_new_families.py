@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 
+from ekm.errors import InputError
 from robots.generator import FAMILIES, family_of, generate, parse_spelling
 from robots.geometry import segment_distance
 from robots.params import KHEPERA
@@ -136,6 +137,9 @@ def test_a_door_shuts_on_the_shortest_route_before_the_fastest_robot_gets_there(
 def test_families_combine_through_the_spelling():
     assert parse_spelling("large+traffic:7") == ("large+traffic", 7, None)
     assert parse_spelling("traffic+large:7") is None  # large cannot be laid over
+    with pytest.raises(InputError, match=r"^traffic\+large:7: large cannot be laid over another family's world "
+                                         r"\(after a '\+' only traffic, pillars\)$"):
+        load_world("traffic+large:7")
     assert family_of("maze+pillars+traffic") is not None and family_of("maze+nothing") is None
     w = made("large+traffic", 3)
     assert w.difficulty.family == "large+traffic" and len(w.moving) >= 1
