@@ -72,7 +72,6 @@ class DamnParams:
                                                           "velocity"})
     brake_s: float = field(default=0.5, metadata={"help": "avoid and goto: s of travel a speed must have room for; "
                                                           "goto's speed is d / brake_s"})
-    aim_s: float = field(default=0.5, metadata={"help": "goto: s a turn is held to face the checkpoint"})
     stop_within: float = field(default=0.003, metadata={"help": "goto: m from the goal within which it votes to stop"})
     avoid_weight: float = field(default=3.0, metadata={"help": "weight of avoid's votes"})
     goal_weight: float = field(default=1.0, metadata={"help": "weight of go-to-checkpoint's votes"})
@@ -85,7 +84,7 @@ class DamnParams:
                 "goal no point beyond it counts; an extension)", "choices": ("all", "nearer")})
 
     def __post_init__(self):
-        for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "aim_s", "stop_within", "memory_s", "merge"):
+        for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "stop_within", "memory_s", "merge"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
         for name in ("clearance", "avoid_weight", "goal_weight", "keep_weight"):

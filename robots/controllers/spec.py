@@ -72,8 +72,8 @@ BUILT_IN = (
                  "subsumption: layered behaviours, suppression and inhibition, 9 responses (Brooks; Arkin 4.3)",
                  None, encoding="discrete"),
     Architecture("damn", damn.DamnParams, damn.build,
-                 "DAMN: behaviours vote over 9 turns and 6 speeds, two winner-take-all arbiters "
-                 "(Rosenblatt; Arkin 4.5.5)", None, encoding="discrete"),
+                 f"DAMN: behaviours vote over {damn.DamnParams.turns} headings and {damn.DamnParams.speeds} speeds, "
+                 "two winner-take-all arbiters (Rosenblatt; Arkin 4.5.5)", None, encoding="discrete"),
     Architecture("deliberation", deliberation.DeliberationParams, deliberation.build,
                  "reactive deliberation: behaviours bid for one action schema, the deliberator interrupts "
                  "(Sahota ch. 3)", None, encoding="discrete"),
