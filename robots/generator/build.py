@@ -10,11 +10,13 @@ starts again from the next sub-seed.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
 
 from ekm.angles import wrap
+from ekm.errors import InputError
 from robots.generator.layout import T, Retry, as_shape
 from robots.generator.shapes import route_passes
 from robots.worldfile import parse_world
@@ -27,12 +29,10 @@ def build(family, seed: int, difficulty: float | None, name: str):
     :func:`robots.generator.generate`)."""
     from robots.generator.reach import reach
 
-    from ekm.errors import InputError
-
     rng = np.random.default_rng(seed)
     drawn = rng.uniform()  # always drawn, so a given difficulty leaves the rest of the stream as it was
     level = round(drawn if difficulty is None else difficulty, 4)
-    why: dict[str, int] = {}  # why the sub-seeds were refused, and how often
+    why: Counter[str] = Counter()  # why the layouts drawn were refused, and how often
     for attempt in range(ATTEMPTS):
         if attempt:
             rng = np.random.default_rng([seed, attempt])
@@ -43,19 +43,17 @@ def build(family, seed: int, difficulty: float | None, name: str):
             if layout.blockers:
                 doc = close_doors(doc, [tidy(sym.shape(c)) for c in layout.candidates], layout.blockers, rng)
         except Retry as refused:
-            reason = str(refused) or "the layouts drawn did not fit"
-            why[reason] = why.get(reason, 0) + 1
+            why[str(refused) or "the layouts drawn did not fit"] += 1
             continue
         world = parse_world(doc, name)
         found = reach(world)
         if not found.solvable:
-            reason = "the generator's search found no route for the robot's disc"
-            why[reason] = why.get(reason, 0) + 1
+            why["the generator's search found no route for the robot's disc"] += 1
             continue
         doc["difficulty"] = {"family": family.name, "seed": seed, "level": level, **found.measures(),
                              "traps": layout.traps, "movers": len(world.moving)}
         return parse_world(doc, name)
-    reason, times = max(why.items(), key=lambda item: item[1])
+    (reason, times), = why.most_common(1)
     raise InputError(f"{name}: no world of this spelling from seed {seed}: {reason} ({times} of {ATTEMPTS} layouts "
                      "drawn); try another seed or family")
 
