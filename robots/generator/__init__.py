@@ -78,7 +78,8 @@ def no_family(name: str) -> str:
     parts = str(name).split("+")
     unknown = [p for p in parts if p not in FAMILIES]
     if unknown:
-        return f"unknown world family {unknown[0]!r}{did_you_mean(unknown[0], FAMILIES)} (families: {', '.join(FAMILIES)})"
+        return (f"unknown world family {unknown[0]!r}{did_you_mean(unknown[0], FAMILIES)} "
+                f"(families: {', '.join(FAMILIES)})")
     fixed = next(p for p in parts[1:] if FAMILIES[p].overlay is None)
     return (f"{fixed} cannot be laid over another family's world (after a '+' only "
             f"{', '.join(n for n, f in FAMILIES.all().items() if f.overlay)})")

@@ -73,8 +73,9 @@ def overlay(rng, level: float, made: Layout, n: int | None = None) -> Layout:
                                                 "bounce": True}})
         placed += 1
     if placed < min(n, 1):
-        raise Retry(f"traffic found no place on the route to lay a mover across it (one needs {2 * RADII[0] + 2 * R + PASS:.2f}"
-                    " m of free space across the route at least, for the robot to pass it)")
+        least = 2 * RADII[0] + 2 * R + PASS
+        raise Retry(f"traffic found no place on the route to lay a mover across it (one needs {least:.2f} m of free "
+                    "space across the route at least, for the robot to pass it)")
     return Layout({**doc, "moving": moving}, made.traps, made.blockers, made.candidates)
 
 
