@@ -10,7 +10,7 @@ runner never asks which architecture it runs.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import partial
 from typing import Any, Callable, NamedTuple
 
@@ -95,6 +95,16 @@ def beyond_the_goal(gaps, target, final):
     remembered obstacles (:mod:`robots.controllers.fields`), here at the goal only: a checkpoint on the way is
     passed, not stopped at, and what lies beyond it is the way on."""
     return jnp.asarray(final) & (jnp.asarray(gaps) >= jnp.asarray(target)[1])
+
+
+#: The ``avoid`` choices of the reactive architectures: ``all`` as the books avoid, ``nearer`` nothing beyond the goal.
+AVOID = ("all", "nearer")
+
+
+def avoid_option(help: str):
+    """The ``avoid`` parameter of a reactive architecture's parameters (a dataclass field): one of :data:`AVOID`,
+    ``nearer`` by default (:func:`beyond_the_goal`); ``help`` says what it avoids."""
+    return field(default="nearer", metadata={"help": help, "choices": AVOID})
 
 
 def readings_to_the_goal(obs: Observation):

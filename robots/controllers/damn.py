@@ -51,7 +51,7 @@ import jax
 import jax.numpy as jnp
 
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, on_ring, ring
+from robots.controllers.base import Controller, Observation, avoid_option, on_ring, ring
 from ekm.angles import wrap
 from robots.controllers.discrete import free_ahead, rotate, sense, wheels
 from robots.params import KHEPERA, RobotParams
@@ -79,9 +79,8 @@ class DamnParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
-    avoid: str = field(default="nearer", metadata={
-        "help": "avoid: all, or nearer (the way to the checkpoint looks only as far as the checkpoint, and at the "
-                "goal no point beyond it counts; an extension)", "choices": ("all", "nearer")})
+    avoid: str = avoid_option("avoid: all, or nearer (the way to the checkpoint looks only as far as the checkpoint, "
+                              "and at the goal no point beyond it counts; an extension)")
 
     def __post_init__(self):
         for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "stop_within", "memory_s", "merge"):

@@ -78,7 +78,7 @@ import jax.numpy as jnp
 
 from ekm.angles import wrap
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, on_ring, ring
+from robots.controllers.base import Controller, Observation, avoid_option, on_ring, ring
 from robots.controllers.discrete import bearing, free_ahead, in_the_way, rotate, sense, way_out, wheels, world_point
 from robots.params import KHEPERA, RobotParams
 
@@ -125,9 +125,8 @@ class DeliberationParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
-    avoid: str = field(default="nearer", metadata={
-        "help": "which remembered points it avoids: all or nearer (at the goal, none beyond it; an extension)",
-        "choices": ("all", "nearer")})
+    avoid: str = avoid_option("which remembered points it avoids: all or nearer (at the goal, none beyond it; an "
+                              "extension)")
 
     def __post_init__(self):
         for name in ("period", "max_s", "turn_gain", "brake_s", "stop_within", "waypoint", "halt", "detour",

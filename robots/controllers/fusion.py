@@ -36,7 +36,7 @@ import jax.numpy as jnp
 
 from ekm import indirect
 from ekm.config import EKMConfig
-from robots.controllers.base import Controller, Observation, proximity, readings_to_the_goal
+from robots.controllers.base import Controller, Observation, avoid_option, proximity, readings_to_the_goal
 from robots.controllers.braitenberg import avoid, z_matrix
 from robots.params import KHEPERA, RobotParams, SensorSet
 
@@ -57,9 +57,8 @@ class FusionParams:
     refresh: str = field(default="sensed", metadata={
         "help": "when target reaching recomputes c_p: clock (every period) or sensed (also every tick while an "
                 "obstacle is sensed)", "choices": ("clock", "sensed")})
-    avoid: str = field(default="nearer", metadata={
-        "help": "which readings the avoidance answers: all (ch. 4.5) or nearer (at the goal, none beyond it; an "
-                "extension)", "choices": ("all", "nearer")})
+    avoid: str = avoid_option("which readings the avoidance answers: all (ch. 4.5) or nearer (at the goal, none beyond "
+                              "it; an extension)")
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:

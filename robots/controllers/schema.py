@@ -83,7 +83,8 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from robots.controllers.base import Controller, Observation, on_ring, readings_to_the_goal, velocity_to_wheels
+from robots.controllers.base import (Controller, Observation, avoid_option, on_ring, readings_to_the_goal,
+                                     velocity_to_wheels)
 from robots.params import KHEPERA, RobotParams
 
 
@@ -113,9 +114,8 @@ class SchemaParams:
     persistence: float = field(default=2.048, metadata={
         "help": "noise: s a random direction persists before the next is drawn (Arkin's p)"})
     seed: int = field(default=0, metadata={"help": "noise: seed of the PRNG key"})
-    avoid: str = field(default="nearer", metadata={
-        "help": "which readings avoid-static-obstacle answers: all (Arkin) or nearer (at the goal, none beyond "
-                "it; an extension)", "choices": ("all", "nearer")})
+    avoid: str = avoid_option("which readings avoid-static-obstacle answers: all (Arkin) or nearer (at the goal, none "
+                              "beyond it; an extension)")
 
     def __post_init__(self):
         for name in ("goal_gain", "slow", "influence", "persistence"):

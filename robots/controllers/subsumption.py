@@ -63,7 +63,7 @@ import jax
 import jax.numpy as jnp
 
 from robots.controllers import memory as mem
-from robots.controllers.base import Controller, Observation, on_ring, ring
+from robots.controllers.base import Controller, Observation, avoid_option, on_ring, ring
 from ekm.angles import wrap
 from robots.controllers.discrete import in_the_way, sense, way_out, wheels
 from robots.params import KHEPERA, RobotParams
@@ -118,9 +118,8 @@ class SubsumptionParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
-    avoid: str = field(default="nearer", metadata={
-        "help": "which remembered points it avoids: all or nearer (at the goal, none beyond it; an extension)",
-        "choices": ("all", "nearer")})
+    avoid: str = avoid_option("which remembered points it avoids: all or nearer (at the goal, none beyond it; an "
+                              "extension)")
 
     def __post_init__(self):
         for name in ("cruise", "slow", "creep", "arc_speed", "arc_turn", "spin", "back", "near", "flee", "halt",
