@@ -35,20 +35,26 @@ from robots.params import SensorSet
 FRONT = math.radians(60.0)
 
 
-def z_matrix(sensors: SensorSet, cross: float, same: float, front: float = FRONT) -> np.ndarray:
+def z_matrix(sensors: SensorSet, cross: float, same: float, front: float = FRONT,
+             backward: bool = False) -> np.ndarray:
     """Z ``(2, m)`` of Eq. 4.10 for ``sensors`` (see the module docstring): ``-cross`` from each forward-facing
-    sensor to the opposite motor and ``+same`` to its own; small positive weights from the others."""
+    sensor to the opposite motor and ``+same`` to its own; small positive weights from the others.
+
+    ``backward=True`` gives the vehicle that drives the other way round (an extension): the rule applied with
+    the back as the front, so the sensors facing the way a reversing robot goes brake it and turn it away. It
+    is the forward vehicle seen from behind: sensor angles φ - π, the motors' roles swapped (the robot's left
+    is the reversed vehicle's right) and their signs flipped (its forward is the robot's backward)."""
     if not (cross >= 0 and same >= 0):
         raise ValueError(f"Braitenberg gains must be >= 0, got cross={cross}, same={same}")
     z = np.zeros((2, len(sensors.angles)), dtype=np.float32)
     for j, phi in enumerate(sensors.angles):
-        phi = wrap(phi)
+        phi = wrap(phi - math.pi if backward else phi)
         # How much of the sensor is on the left: 1 left, 0 right, 1/2 straight ahead or straight behind.
         left = 0.5 if min(abs(phi), math.pi - abs(phi)) < 1e-9 else (1.0 if phi > 0 else 0.0)
         own, opposite = (same, -cross) if abs(phi) <= front + 1e-9 else (same, 0.5 * same)
         z[0, j] = left * own + (1.0 - left) * opposite  # left motor
         z[1, j] = (1.0 - left) * own + left * opposite  # right motor
-    return z
+    return -z[::-1].copy() if backward else z
 
 
 def avoid(z, u_o):

@@ -29,3 +29,27 @@ def test_z_has_large_negative_cross_weights_from_forward_sensors_and_small_posit
     assert np.all(others > 0) and np.all(others <= 0.4)
     long = braitenberg.z_matrix(LONG_RANGE, cross=4.0, same=0.4)
     assert long[0, 0] == long[1, 0] == pytest.approx(-1.8)  # straight ahead: both motors, split evenly
+
+
+def test_the_backward_vehicle_turns_a_reversing_khepera_away_from_what_is_behind_it():
+    """Worked by hand from Eq. 4.10 with the back as the front: the rear sensors (-160°, 160°) are the reversed
+    vehicle's forward ones at ±20°. Something behind on the left (160°) drives the right motor forward (+cross) and
+    the left one back (-same): the robot turns left, its back swings right, away; equal rear readings push both
+    motors forward by cross - same, braking the reversing robot. A front sensor (85°) becomes a small brake."""
+    z = braitenberg.z_matrix(SHORT_RANGE, cross=4.0, same=0.4, backward=True)
+    # Khepera order: 85, 45, 10, -10, -45, -85, -160, 160 degrees.
+    np.testing.assert_allclose(z[:, 7], [-0.4, 4.0])
+    np.testing.assert_allclose(z[:, 6], [4.0, -0.4])
+    np.testing.assert_allclose(z[:, 0], [-0.4, -0.2])
+    np.testing.assert_allclose(z[:, 5], [-0.2, -0.4])
+    left, right = np.asarray(braitenberg.avoid(z, np.array([0, 0, 0, 0, 0, 0, 0.5, 0.5], np.float32)))
+    assert left == pytest.approx(right) == pytest.approx(0.5 * (4.0 - 0.4))
+
+
+def test_the_backward_long_ring_vehicle_is_the_forward_one_seen_from_behind():
+    """The long ring is symmetric under a half turn: the sensor straight behind (180°) is the reversed vehicle's
+    straight-ahead one, -1.8 to both of its motors ((same - cross) / 2) and so +1.8 to both of the robot's; the sensor
+    straight ahead is behind the reversed vehicle, +0.3 to both of its motors ((same + same / 2) / 2), -0.3 here."""
+    z = braitenberg.z_matrix(LONG_RANGE, cross=4.0, same=0.4, backward=True)
+    np.testing.assert_allclose(z[:, 6], [1.8, 1.8])  # 180°
+    np.testing.assert_allclose(z[:, 0], [-0.3, -0.3])  # 0°
