@@ -8,7 +8,7 @@ when the checkpoint changes ("the target reaching module can react immediately t
 checkpoint", Fig. 6.5). Each new module output updates the shared motor state (the last c_p and c_o),
 and the fused command is sent whenever it changes; sending an unchanged command changes nothing.
 
-Two readings of ch. 4.5, chosen by measurement (``docs/reproduce/architectures.md``):
+Three readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/architectures.md``):
 
 - **β and the stop.** Eq. 4.11 scales target reaching by β even in free space, and the Khepera's
   speed unit (8 mm/s) rounds β c_p to zero 1/β times further from the target than c_p itself: with
@@ -19,6 +19,12 @@ Two readings of ch. 4.5, chosen by measurement (``docs/reproduce/architectures.m
   reaching also recomputes c_p at every tick on which an obstacle is sensed, because the avoidance has
   moved the robot off the arc that c_p was computed for; in free space it keeps its 1.024 s period.
   ``refresh="clock"`` keeps it strictly periodic.
+- **Which way Z faces.** Ch. 4.4's vehicle guards the robot's front, but the indirect map drives backward
+  onto a target close behind (c_p,left + c_p,right < 0), and a reversing Khepera meets what is behind it
+  with two rear sensors whose weights are Z's small positive ones: it backs into it. With
+  ``facing="travel"`` (the default, an extension) the avoidance while c_p reverses is the same vehicle
+  turned round (:func:`robots.controllers.braitenberg.z_matrix` with ``backward=True``); ``"front"`` is
+  ch. 4.4's.
 
 Command fusion drives the polar-chart map by default (:data:`DEFAULT_CHART`): a signed-chart map
 reverses onto targets behind (:mod:`ekm.charts`), and a Khepera's short-range sensors — six ahead, two
@@ -33,6 +39,7 @@ from typing import NamedTuple
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from ekm import indirect
 from ekm.config import EKMConfig
@@ -44,7 +51,8 @@ from robots.params import KHEPERA, RobotParams, SensorSet
 @dataclass(frozen=True)
 class FusionParams:
     """Parameters of command fusion; the defaults are the thesis's ch. 6.2.1 set-up but ``avoid`` (``nearer``, an
-    extension: at the goal nothing beyond it is avoided; ``all`` is ch. 4.5's)."""
+    extension: at the goal nothing beyond it is avoided; ``all`` is ch. 4.5's) and ``facing`` (``travel``, an
+    extension: Z turned round while target reaching reverses; ``front`` is ch. 4.4's)."""
 
     sensors: str = field(default="short", metadata={"help": "IR ring: short (8 Khepera sensors, 5 cm) or long "
                                                             "(12 around, 17.5 cm)", "choices": ("short", "long")})
@@ -59,6 +67,10 @@ class FusionParams:
                 "obstacle is sensed)", "choices": ("clock", "sensed")})
     avoid: str = avoid_option("which readings the avoidance answers: all (ch. 4.5) or nearer (at the goal, none beyond "
                               "it; an extension)")
+    facing: str = field(default="travel", metadata={
+        "help": "which way Z's forward-facing sensors face: front (ch. 4.4, always the robot's front) or travel "
+                "(the way target reaching drives: the back while the map reverses; an extension)",
+        "choices": ("front", "travel")})
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:
@@ -88,13 +100,15 @@ def init() -> FusionState:
 def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
          sensors: SensorSet, on_sensed: bool = False, nearer: bool = False):
     """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
-    beyond the goal), fuse (Eq. 4.11)."""
+    beyond the goal) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives forward, ``z[1]`` while it reverses —
+    and fuse (Eq. 4.11)."""
     refresh = (obs.t >= state.due - 1e-6) | (obs.target_id != state.target_id)
     if on_sensed:
         refresh = refresh | jnp.any(jnp.isfinite(obs.ir))
     c_p = jnp.where(refresh, indirect.control(ekm, obs.target, cfg)[0], state.c_p)
     due = jnp.where(refresh, obs.t + period, state.due)
-    c_o = avoid(z, proximity(readings_to_the_goal(obs) if nearer else obs.ir, sensors))
+    reversing = (c_p[0] + c_p[1] < 0.0).astype(jnp.int32)  # z[1]: the vehicle facing backward (``facing``)
+    c_o = avoid(z[reversing], proximity(readings_to_the_goal(obs) if nearer else obs.ir, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
     return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32)), c
 
@@ -103,7 +117,8 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
     """Command fusion driven by the indirect map ``ekm`` (one trial) on ``robot``."""
     sensors = robot.short_range if params.sensors == "short" else robot.long_range
     robot.substeps(params.period)  # a whole number of physics sub-steps, or ValueError
-    z = jnp.asarray(z_matrix(sensors, params.cross, params.same))
+    z = jnp.asarray(np.stack([z_matrix(sensors, params.cross, params.same,
+                                       backward=backward and params.facing == "travel") for backward in (False, True)]))
     run = partial(step, ekm=ekm, z=z, cfg=cfg, beta=params.beta, period=params.period, sensors=sensors,
                   on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer")
     return Controller(name="fusion", spec=spec, sensors=sensors, init=init, step=run, params=params, robot=robot)

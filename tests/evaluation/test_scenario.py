@@ -324,7 +324,10 @@ def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it
 # parameters per architecture, the defaults, for every world; the runs are set up as the thesis's were —
 # its greedy checkpoints (ch. 3.2.3) and no recovery, so the trap monitor ends a trapped run.
 
-FUSION_LONG = "fusion:sensors=long,period=0.128"  # ch. 6.2.2: 12 long-range sensors, both modules at 0.128 s
+# Command fusion with ch. 4.4's Z, whose forward-facing sensors are always the robot's front (the default turns Z
+# round while the map reverses, an extension measured on the generated suite: docs/reproduce/architectures.md).
+FUSION = "fusion:facing=front"
+FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front"  # ch. 6.2.2: 12 long-range sensors, both at 0.128 s
 THESIS = ScenarioConfig(checkpoints="thesis", recover=False)
 
 
@@ -344,13 +347,13 @@ def count(records, key):
 # ----------------------------------------------------------------------------------------------- quick
 
 def test_quick_fusion_reaches_the_goal_past_a_small_unforeseen_obstacle():
-    assert count(runs("three-rooms-static", "fusion", range(3)), "reached") == 3
+    assert count(runs("three-rooms-static", FUSION, range(3)), "reached") == 3
 
 
 def test_quick_neural_fields_negotiate_the_trap_obstacles_that_trap_command_fusion():
     for world in ("extended-obstacle", "concave-obstacle"):
         assert count(runs(world, "fields", range(3)), "reached") == 3, world
-    assert count(runs("concave-obstacle", "fusion", range(3)), "trapped") == 3
+    assert count(runs("concave-obstacle", FUSION, range(3)), "trapped") == 3
 
 
 # ------------------------------------------------------------------------------------- seeds 0–9 (slow)
@@ -358,7 +361,7 @@ def test_quick_neural_fields_negotiate_the_trap_obstacles_that_trap_command_fusi
 @pytest.mark.slow
 @pytest.mark.parametrize("world", ["three-rooms-static", "three-rooms-moving", "three-rooms-changed"])
 def test_ch_6_2_1_command_fusion_with_short_range_sensors_reaches_the_goal(world):
-    records = runs(world, "fusion", range(10))
+    records = runs(world, FUSION, range(10))
     assert count(records, "reached") >= 9, [r["ended"] for r in records]
     if world == "three-rooms-changed":
         assert all(r["replans"] >= 1 for r in records if r["reached"])  # through the upper doorway
@@ -374,7 +377,7 @@ def test_ch_6_2_2_neural_fields_with_long_range_sensors_reach_the_goal(world):
 def test_ch_6_2_2_neural_fields_take_a_shorter_path_than_command_fusion_where_both_succeed():
     for world in ("three-rooms-static", "extended-obstacle", "concave-obstacle"):
         both = [(f["path_m"], c["path_m"]) for f, c in zip(runs(world, "fields", range(10)),
-                                                           runs(world, "fusion", range(10)))
+                                                           runs(world, FUSION, range(10)))
                 if f["reached"] and c["reached"]]
         if both:
             fields_path, fusion_path = np.mean(both, axis=0)
@@ -383,7 +386,7 @@ def test_ch_6_2_2_neural_fields_take_a_shorter_path_than_command_fusion_where_bo
 
 @pytest.mark.slow
 @pytest.mark.parametrize("world", ["extended-obstacle", "concave-obstacle"])
-@pytest.mark.parametrize("architecture", ["fusion", FUSION_LONG])
+@pytest.mark.parametrize("architecture", [FUSION, FUSION_LONG])
 def test_ch_6_2_2_command_fusion_is_trapped_by_extended_and_concave_obstacles(world, architecture):
     records = runs(world, architecture, range(10))
     assert count(records, "trapped") >= 8 and count(records, "reached") <= 1

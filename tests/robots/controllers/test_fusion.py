@@ -58,3 +58,27 @@ def test_fusion_reaches_a_goal_beside_a_wall_only_when_it_avoids_nothing_beyond_
     assert near.reached and near.collisions == 0 and near.final_distance_m < 0.005
     every = run_architecture(dead_end(0.015), parse_architecture("fusion:avoid=all"), seed=0, config=config)
     assert not every.arrived and every.collisions == 0 and every.final_distance_m > 0.01
+
+
+def test_fusion_turns_z_round_while_target_reaching_reverses(signed_map):
+    """Something 2 cm behind on the left (160°) of a robot the map drives backward: ch. 4.4's Z (``facing=front``)
+    answers with small positive weights (0.4, 0.2) × u; turned round (``travel``) it answers (-0.4, 4.0) × u — the
+    rear sensor is the reversed vehicle's forward one (hand-worked in test_braitenberg). Driving forward, both are
+    ch. 4.4's."""
+    ekm, cfg = signed_map
+    ir = np.full(8, np.inf)
+    ir[7] = 0.02
+    behind, ahead = (np.radians(170.0), 0.1), (0.3, 0.1)  # u_p = (α, d)
+    parts = {}
+    for target in (behind, ahead):
+        c_p, _ = indirect.control(ekm, jnp.asarray(target), cfg)
+        assert (np.sum(c_p) < 0) == (target is behind)  # the map reverses onto the target behind
+        for facing in ("front", "travel"):
+            ctl = fusion_controller(signed_map, facing=facing, avoid="all", beta=0.5)
+            _, c = ctl.step(ctl.init(), observation(ir, target=target))
+            parts[target, facing] = (np.asarray(c) - 0.5 * np.asarray(c_p)) / 0.5  # Z u_o
+    np.testing.assert_allclose(parts[ahead, "front"], parts[ahead, "travel"], rtol=1e-5)
+    u = parts[behind, "front"][1] / 0.2
+    assert u > 0
+    np.testing.assert_allclose(parts[behind, "front"], [0.4 * u, 0.2 * u], rtol=1e-4)
+    np.testing.assert_allclose(parts[behind, "travel"], [-0.4 * u, 4.0 * u], rtol=1e-4)
