@@ -24,7 +24,10 @@ Three readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/archite
   with two rear sensors whose weights are Z's small positive ones: it backs into it. With
   ``facing="travel"`` (the default, an extension) the avoidance while c_p reverses is the same vehicle
   turned round (:func:`robots.controllers.braitenberg.z_matrix` with ``backward=True``); ``"front"`` is
-  ch. 4.4's.
+  ch. 4.4's. The ring is front-heavy: behind, the Khepera has only its rear pair, 20° off the way back, and
+  a reversing robot meets a wall on its flank in the 75° between them and the side sensors. So the turned
+  vehicle counts as forward-facing every sensor within ``back_cone`` (100°) of the way back, the side ones
+  included; driving ahead, 60° as in ch. 4.4.
 
 Command fusion drives the polar-chart map by default (:data:`DEFAULT_CHART`): a signed-chart map
 reverses onto targets behind (:mod:`ekm.charts`), and a Khepera's short-range sensors — six ahead, two
@@ -33,6 +36,7 @@ behind — cannot guard a robot that backs into what the avoidance turned it awa
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import cache, partial
 from typing import NamedTuple
@@ -71,12 +75,17 @@ class FusionParams:
         "help": "which way Z's forward-facing sensors face: front (ch. 4.4, always the robot's front) or travel "
                 "(the way target reaching drives: the back while the map reverses; an extension)",
         "choices": ("front", "travel")})
+    back_cone: float = field(default=100.0, metadata={
+        "help": "degrees: with facing=travel, how far from the way back a sensor counts as forward-facing while the "
+                "map reverses (the Khepera's rear pair is at 20 degrees, its sides at 95)"})
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:
             raise ValueError(f"beta must be in (0, 1], got {self.beta}")
         if self.cross < 0 or self.same < 0:
             raise ValueError(f"cross and same must be >= 0, got {self.cross}, {self.same}")
+        if not 0.0 < self.back_cone <= 180.0:
+            raise ValueError(f"back_cone must be in (0, 180] degrees, got {self.back_cone}")
 
 
 #: The chart of the map command fusion drives when no map is given (see the module docstring).
@@ -117,8 +126,10 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
     """Command fusion driven by the indirect map ``ekm`` (one trial) on ``robot``."""
     sensors = robot.short_range if params.sensors == "short" else robot.long_range
     robot.substeps(params.period)  # a whole number of physics sub-steps, or ValueError
-    z = jnp.asarray(np.stack([z_matrix(sensors, params.cross, params.same,
-                                       backward=backward and params.facing == "travel") for backward in (False, True)]))
+    ahead = z_matrix(sensors, params.cross, params.same)
+    back = (z_matrix(sensors, params.cross, params.same, front=math.radians(params.back_cone), backward=True)
+            if params.facing == "travel" else ahead)
+    z = jnp.asarray(np.stack([ahead, back]))
     run = partial(step, ekm=ekm, z=z, cfg=cfg, beta=params.beta, period=params.period, sensors=sensors,
                   on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer")
     return Controller(name="fusion", spec=spec, sensors=sensors, init=init, step=run, params=params, robot=robot)

@@ -121,7 +121,8 @@ def test_a_moving_goal_is_caught_under_the_robots_body():
 
 def test_recovery_adds_the_sensed_obstacle_to_the_map_and_replans():
     world = load_world("extended-obstacle")
-    rec = run_architecture(world, parse_architecture("fusion"), seed=0,
+    # ch. 4.4's command fusion, which the long wall traps (the default's turned Z backs it round the wall's end)
+    rec = run_architecture(world, parse_architecture("fusion:facing=front"), seed=0,
                            config=ScenarioConfig(recover=True, trap_after=10.0, time_limit=40.0))
     assert rec.recoveries >= 1 and "recovery" in [p.reason for p in rec.plans]
     first = next(p for p in rec.plans if p.reason == "recovery")

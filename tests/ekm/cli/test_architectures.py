@@ -35,7 +35,7 @@ def test_every_built_in_architecture_is_listed_with_its_parameters(cli):
     sensors = next(p for p in fusion["parameters"] if p["name"] == "sensors")
     assert sensors["choices"] == ["short", "long"]
     code, out, _ = cli("architectures")
-    assert all(f"{name} (built in;" in out for name in BUILT_IN) and "beta    = 0.85 (float)" in out
+    assert all(f"{name} (built in;" in out for name in BUILT_IN) and "beta      = 0.85 (float)" in out
     assert "deliberation (built in; drives no EKM; discrete responses)" in out
 
 

@@ -53,3 +53,13 @@ def test_the_backward_long_ring_vehicle_is_the_forward_one_seen_from_behind():
     z = braitenberg.z_matrix(LONG_RANGE, cross=4.0, same=0.4, backward=True)
     np.testing.assert_allclose(z[:, 6], [1.8, 1.8])  # 180°
     np.testing.assert_allclose(z[:, 0], [-0.3, -0.3])  # 0°
+
+
+def test_the_backward_vehicle_with_a_wider_cone_counts_the_khepera_s_sides_as_forward():
+    """With ``front`` 100°, the sides (±85°, 95° off the way back) are the reversed vehicle's forward sensors too:
+    -85° is its 95° on the left, -cross to its right motor (the robot's left, sign flipped: +4) and +same to its own
+    (the robot's right: -0.4)."""
+    z = braitenberg.z_matrix(SHORT_RANGE, cross=4.0, same=0.4, front=np.radians(100.0), backward=True)
+    np.testing.assert_allclose(z[:, 5], [4.0, -0.4])
+    np.testing.assert_allclose(z[:, 0], [-0.4, 4.0])
+    np.testing.assert_allclose(z[:, 1], [-0.4, -0.2])  # 45°: 135° off the way back, still a small brake

@@ -2,6 +2,7 @@
 
 import jax.numpy as jnp
 import numpy as np
+import pytest
 
 from ekm import indirect
 from evaluation.scenario import ScenarioConfig, run_architecture
@@ -60,14 +61,19 @@ def test_fusion_reaches_a_goal_beside_a_wall_only_when_it_avoids_nothing_beyond_
     assert not every.arrived and every.collisions == 0 and every.final_distance_m > 0.01
 
 
-def test_fusion_turns_z_round_while_target_reaching_reverses(signed_map):
-    """Something 2 cm behind on the left (160°) of a robot the map drives backward: ch. 4.4's Z (``facing=front``)
-    answers with small positive weights (0.4, 0.2) × u; turned round (``travel``) it answers (-0.4, 4.0) × u — the
-    rear sensor is the reversed vehicle's forward one (hand-worked in test_braitenberg). Driving forward, both are
-    ch. 4.4's."""
+@pytest.mark.parametrize("sensor, front, travel", [
+    (7, (0.4, 0.2), (-0.4, 4.0)),  # 160°: the reversed vehicle's forward sensor at 20°
+    (5, (0.2, 0.4), (4.0, -0.4)),  # -85°: at 95° from the way back, within back_cone's 100°
+])
+def test_fusion_turns_z_round_while_target_reaching_reverses(signed_map, sensor, front, travel):
+    """Something 2 cm from a sensor of a robot the map drives backward: ch. 4.4's Z (``facing=front``) answers with
+    its small positive weights × u; turned round (``travel``) with the reversed vehicle's -cross to the opposite
+    motor and +same to its own, signs flipped (hand-worked in test_braitenberg): the rear sensor 160° on the left
+    brakes and turns the robot left, the side sensor on the right brakes and turns it right. Driving forward, both
+    are ch. 4.4's."""
     ekm, cfg = signed_map
     ir = np.full(8, np.inf)
-    ir[7] = 0.02
+    ir[sensor] = 0.02
     behind, ahead = (np.radians(170.0), 0.1), (0.3, 0.1)  # u_p = (α, d)
     parts = {}
     for target in (behind, ahead):
@@ -78,7 +84,21 @@ def test_fusion_turns_z_round_while_target_reaching_reverses(signed_map):
             _, c = ctl.step(ctl.init(), observation(ir, target=target))
             parts[target, facing] = (np.asarray(c) - 0.5 * np.asarray(c_p)) / 0.5  # Z u_o
     np.testing.assert_allclose(parts[ahead, "front"], parts[ahead, "travel"], rtol=1e-5)
-    u = parts[behind, "front"][1] / 0.2
+    u = parts[behind, "front"][0] / front[0]
     assert u > 0
-    np.testing.assert_allclose(parts[behind, "front"], [0.4 * u, 0.2 * u], rtol=1e-4)
-    np.testing.assert_allclose(parts[behind, "travel"], [-0.4 * u, 4.0 * u], rtol=1e-4)
+    np.testing.assert_allclose(parts[behind, "front"], np.multiply(front, u), rtol=1e-4)
+    np.testing.assert_allclose(parts[behind, "travel"], np.multiply(travel, u), rtol=1e-4)
+
+
+def test_fusion_back_cone_is_in_degrees_and_bounded(signed_map):
+    with pytest.raises(ValueError, match="back_cone"):
+        fusion.FusionParams(back_cone=0.0)
+    with pytest.raises(ValueError, match="back_cone"):
+        fusion.FusionParams(back_cone=200.0)
+    narrow = fusion_controller(signed_map, back_cone=60.0)  # the side sensors (95° off the way back) left out
+    ir = np.full(8, np.inf)
+    ir[5] = 0.02
+    wide = fusion_controller(signed_map)
+    target = (np.radians(170.0), 0.1)
+    (_, c_narrow), (_, c_wide) = (ctl.step(ctl.init(), observation(ir, target=target)) for ctl in (narrow, wide))
+    assert np.sum(c_wide) > np.sum(c_narrow)  # braked by the side sensor only within the wide cone
