@@ -219,7 +219,7 @@ def look(setup: Setup, route: Route, pos, index, tick, past, need):
         behind = index - jnp.arange(1, config.look_back + 1)  # the latest first
         open_ = (behind >= lowest) & (behind <= past[1])
         seen = jax.vmap(lambda q: sees(pos, q, route.sight, radius, need))(cps[jnp.maximum(behind, 0)])
-        crossed = ~sees(pos, cps[index], route.sight, radius, 0.0)
+        crossed = ~sees(pos, cps[index], route.sight, radius, jnp.minimum(0.0, need))  # as _seen_earlier
         back = looking & crossed & jnp.any(open_ & seen)
         index = jnp.where(back, behind[jnp.argmax(open_ & seen)], index)
     return index, passed, back, past

@@ -615,17 +615,19 @@ def _seen_later(position, current, index: int, config: ScenarioConfig, sight) ->
 
 def _seen_earlier(position, course: Course, config: ScenarioConfig) -> int | None:
     """When a known wall comes between the robot at ``position`` and its checkpoint — the robot's disc would touch
-    it somewhere along the straight segment to it (slack below 0 on the planner's map ``course.sight``) — the latest
-    of the ``look_back`` checkpoints before it that the look ahead took the robot past (``course.looked_past``) and
-    that it sees as :func:`_seen_later` measures it; otherwise None."""
+    it somewhere along the straight segment to it (slack below 0 on the planner's map ``course.sight``, or below
+    the look ahead's own need where the robot stands closer than that: a segment starts with the slack of its
+    start, and the look ahead took the robot on from there) — the latest of the ``look_back`` checkpoints before
+    it that the look ahead took the robot past (``course.looked_past``) and that it sees as :func:`_seen_later`
+    measures it; otherwise None."""
     current, index, sight = course.plan, course.index, course.sight
     first, last = course.looked_past
     lowest = max(first, index - config.look_back)
     if last < lowest:
         return None
-    if visibility.segment_clear(position, current.checkpoints[index], sight, 0.0):
-        return None
     need = _sight_need(position, sight)
+    if visibility.segment_clear(position, current.checkpoints[index], sight, min(0.0, need)):
+        return None
     for j in range(min(last, index - 1), lowest - 1, -1):
         if visibility.segment_clear(position, current.checkpoints[j], sight, need):
             return j

@@ -260,3 +260,4 @@ def test_the_jax_runner_turns_back_where_the_pymunk_runner_does():
     assert after((0.3, 0.35), 4, past=(0, -1)) == (2, 0, False)
     assert after((0.3, 0.35), 4, look_back=0) == (2, 0, False)
     assert after((0.6, 0.6), 4) == (2, 0, False)
+    assert after((0.525, 0.51), 4) == (2, 0, False)  # pressed against the wall's end, its way clear of it

@@ -438,3 +438,11 @@ def test_a_robot_that_a_wall_cuts_off_from_its_checkpoint_turns_back_to_the_one_
     assert looked_back((0.3, 0.35), tick=4, looked_past=(0, -1)) == (2, 5, 0)  # it reached 1: it does not go back
     assert looked_back((0.3, 0.35), tick=4, look_back=0) == (2, 5, 0)
     assert looked_back((0.6, 0.6), tick=4) == (2, 5, 0)  # past the wall's end: the goal in clear view
+
+
+def test_a_robot_pressed_against_a_wall_s_end_does_not_turn_back_when_its_way_keeps_clear_of_it():
+    """At (0.525, 0.51) the body is 3.1 mm into the wall's end (the end's corner 26.9 mm from the centre, 5 mm of
+    wall and 25 of body): every straight way from there starts that close; the way to the goal (0.8, 0.3) only draws
+    away from the end, so no wall comes between. The look ahead took the robot on at this slack (its need, the
+    slack less 3 mm): the look back must not undo it (before, it did, and the two alternated every look)."""
+    assert looked_back((0.525, 0.51), tick=4) == (2, 5, 0)
