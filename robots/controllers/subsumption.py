@@ -92,7 +92,7 @@ class SubsumptionParams:
                                                         "corridor makes it turn away"})
     margin: float = field(default=0.012, metadata={"help": "avoid: m added to the body radius for the corridor's "
                                                            "half-width"})
-    flee: float = field(default=0.04, metadata={"help": "avoid: m between the bodies within which a declared "
+    flee: float = field(default=0.08, metadata={"help": "avoid: m between the bodies within which a declared "
                                                         "mover closing on the robot makes it get out of its line"})
     halt: float = field(default=0.01, metadata={"help": "avoid (collide): m ahead within which forward motion is "
                                                         "inhibited"})

@@ -99,3 +99,14 @@ def test_progress_resets_the_count_of_avoid_episodes():
 def test_runaway_gets_out_of_the_line_of_a_closing_mover(mover, response):
     _, t = tick(long_ring(), markers=[mover])
     assert int(t.avoid) == response
+
+
+def test_runaway_starts_while_a_closing_mover_is_within_flee_of_the_body():
+    """A mover of 2 cm radius 11 cm from the robot's centre (0.5, 0.5), straight from the right and closing: 6.5 cm
+    between the bodies (11 - 2 - 2.5). Within the default 8 cm it backs out of its line; within 4 cm it does not
+    yet."""
+    mover = (0.5, 0.39, 0.0, 0.1, 0.02)
+    _, t = tick(long_ring(), markers=[mover])
+    assert P.flee == 0.08 and int(t.avoid) == sub.BACK
+    _, t = tick(long_ring(), markers=[mover], p=sub.SubsumptionParams(flee=0.04))
+    assert int(t.avoid) == -1
