@@ -30,8 +30,9 @@ Three readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/archite
   included; driving ahead, 60° as in ch. 4.4.
 
 Command fusion drives the polar-chart map by default (:data:`DEFAULT_CHART`): a signed-chart map
-reverses onto targets behind (:mod:`ekm.charts`), and a Khepera's short-range sensors — six ahead, two
-behind — cannot guard a robot that backs into what the avoidance turned it away from.
+reverses onto targets behind (:mod:`ekm.charts`), the polar one only onto those close behind, and a
+Khepera's short-range sensors — six ahead, two behind — guard a reversing robot less well than one that
+drives ahead, turned Z or not.
 """
 
 from __future__ import annotations
