@@ -33,16 +33,19 @@ NAMED = ("three-rooms-static", "three-rooms-moving", "three-rooms-changed", "ext
 FIGURES = {"three-rooms-static": "6.3, 6.6", "three-rooms-moving": "6.4", "three-rooms-changed": "6.5",
            "extended-obstacle": "6.7", "concave-obstacle": "6.8"}
 SUITE = "corridor:20,traps:20,clutter:20,maze:20,movers:20,blocked:20"
-THESIS_ARCHITECTURES = ("fusion:avoid=all,facing=front,fusion:sensors=long,period=0.128,avoid=all,facing=front,fields,"
-                        "fields:form=thesis")
+# Command fusion as ch. 4.4-4.5 wrote it: every reading avoided, Z facing the robot's front (docs/reproduce/ch62.md).
+THESIS_FUSION = "fusion:avoid=all,facing=front"
+THESIS_FUSION_LONG = "fusion:sensors=long,period=0.128,avoid=all,facing=front"  # ch. 6.2.2
+THESIS_FIELDS = "fields,fields:form=thesis"
+THESIS_ARCHITECTURES = f"{THESIS_FUSION},{THESIS_FUSION_LONG},{THESIS_FIELDS}"
 CLAIM_ARCHITECTURES = "fusion,fields,schema,samba,subsumption,damn,deliberation"
 CLAIM_SUITE = "corridor:10,traps:10,clutter:10,maze:10,movers:10,blocked:10"
 LEVELS = "deliberation,deliberation:level=half,deliberation:level=none"
 ROBOTS = ("khepera", "worn-wheel", "weak-motor", "wide-base", "slippery", "e-puck")
 LEARNING = "fusion,fields"  # the architectures whose maps learn with --learn
 STILL = "samba,schema,subsumption,damn,deliberation"  # ... and those that have nothing to learn
-THESIS_HEADS = {"fusion:avoid=all,facing=front": "fusion, short-range (ch. 6.2.1)",
-                "fusion:sensors=long,period=0.128,avoid=all,facing=front": "fusion, long-range, 0.128 s (ch. 6.2.2)",
+THESIS_HEADS = {THESIS_FUSION: "fusion, short-range (ch. 6.2.1)",
+                THESIS_FUSION_LONG: "fusion, long-range, 0.128 s (ch. 6.2.2)",
                 "fields": "fields (extended)", "fields:form=thesis": "fields, thesis form"}
 
 
@@ -102,12 +105,12 @@ def suite_defaults():
 
 @cached
 def suite_thesis():
-    """``ekm compare --suite SUITE --trials 1 --architectures fusion:avoid=all,facing=front,fields,fields:form=thesis
-    --checkpoints thesis --no-recover``."""
+    """``ekm compare --suite SUITE --trials 1 --architectures THESIS_FUSION,THESIS_FIELDS --checkpoints thesis
+    --no-recover``."""
     import ekm
 
-    return ekm.compare(suite=SUITE, architectures="fusion:avoid=all,facing=front,fields,fields:form=thesis",
-                       checkpoints="thesis", recover=False, trials=1)
+    return ekm.compare(suite=SUITE, architectures=f"{THESIS_FUSION},{THESIS_FIELDS}", checkpoints="thesis",
+                       recover=False, trials=1)
 
 
 @cached
