@@ -54,7 +54,9 @@ fields' equations and adds four things, each with its reason:
    directions, a far one a narrow one, whereas a fixed δ_α lets a wall seen from afar close a doorway;
    the clearance the width adds to the body follows the sensed gap (:func:`gap_clearance`, ``gap_share``,
    issue 35): a quarter of the room a passage leaves the body, at most 1 cm, so that a passage barely
-   wider than the robot (a niche 7.5 cm wide) stays open;
+   wider than the robot (a niche 7.5 cm wide) stays open; in such a passage the commitment to a side (3.) starts
+   only when the robot's body itself would touch (``narrow_start``), since off the passage's centre line the body
+   and its clearance never see the way open and the robot went round the room instead of in;
 3. **commitment to a side** (:func:`committed_winner`, ``commit``): while a remembered obstacle lies
    between the robot and the target, the robot keeps to the side it first turned to and takes the
    first open direction turning from the target's direction that way — the target field measured one
@@ -142,15 +144,26 @@ class FieldParams:
         "help": "form=extended: the clearance beside a remembered obstacle is at most this share of the room the "
                 "sensed gap across the way to the target leaves the body (0: fixed)"})
 
+    narrow_start: bool = field(default=True, metadata={
+        "help": "form=extended, commit: in a passage narrower than the body and twice the clearance (gap_share), the "
+                "commitment to a side starts only when a still obstacle blocks the way to the target for the body "
+                "itself, not for the body and its clearance"})
+    guard_room: bool = field(default=True, metadata={
+        "help": "form=extended: the guard's clearance is at most the room the robot has now (its nearest remembered "
+                "still obstacle) less guard_margin, so that a wall it already runs beside does not stop it"})
+    guard_margin: float = field(default=0.003, metadata={"help": "form=extended, guard_room: m taken off the room the "
+                                                                 "robot has now for the guard's clearance"})
+
     def __post_init__(self):
         for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge",
                      "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if min(self.clearance, self.guard_s, self.mover_near, self.gap_share, self.escape_s, self.mover_ahead_s) < 0:
-            raise ValueError("clearance, guard_s, mover_near, gap_share, escape_s and mover_ahead_s must be >= 0, got "
-                             f"{self.clearance}, {self.guard_s}, {self.mover_near}, {self.gap_share}, {self.escape_s}, "
-                             f"{self.mover_ahead_s}")
+        if min(self.clearance, self.guard_s, self.mover_near, self.gap_share, self.escape_s, self.mover_ahead_s,
+               self.guard_margin) < 0:
+            raise ValueError("clearance, guard_s, mover_near, gap_share, escape_s, mover_ahead_s and guard_margin must "
+                             f"be >= 0, got {self.clearance}, {self.guard_s}, {self.mover_near}, {self.gap_share}, "
+                             f"{self.escape_s}, {self.mover_ahead_s}, {self.guard_margin}")
         if self.memory_points < 1:
             raise ValueError(f"memory_points must be >= 1, got {self.memory_points}")
 
@@ -289,7 +302,8 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
     :func:`committed_winner`, which of the neurons' directions and (last) the target's are blocked
     (:func:`memory.blocked_along`; none for ``form=thesis``) ``(3, N² + 1)``: row 0 by anything nearer than the
     target, except that the target's own direction counts still obstacles only (a mover passes: the robot does
-    not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a mover."""
+    not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a mover; row 3 (the target's
+    direction only, last) blocked enough to start the commitment to a side (``narrow_start``)."""
     s = winner(ekm.w, obs.target, cfg)
     g_a = target_field(ekm.w, s, p, cfg)
     if p.form == "extended":
@@ -320,29 +334,46 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
             # the way to the target counts as blocked (the commitment to a side) for still obstacles only: a mover
             # passes, and going round it as round a wall took the robot round the room (issue 32)
             way = mem.blocked_along(directions[-1:], obs.target[1], u, v & (r == 0), radius=radius, clearance=clear)
+            starts = commitment_starts(obs.target, u, v & (r == 0), clear, p, radius=radius)
             return (body_field(ekm.w, u, v, radius, p, cfg, clear), blocked.at[-1].set(way[0]),
                     mem.blocked_along(directions, jnp.minimum(obs.target[1], p.near), u, v, radius=radius,
                                       clearance=r),
-                    mem.blocked_along(directions, obs.target[1], u, v & (r > 0), radius=radius, clearance=clear))
+                    mem.blocked_along(directions, obs.target[1], u, v & (r > 0), radius=radius, clearance=clear),
+                    jnp.zeros_like(blocked).at[-1].set(starts))
 
-        b, blocked, blocked_near, by_mover = mem.over_packed(per_neuron, jnp.concatenate([u_obs, grown], axis=1),
-                                                             valid)
-        blocked = jnp.stack([blocked, blocked_near, by_mover])
+        b, blocked, blocked_near, by_mover, starts = mem.over_packed(
+            per_neuron, jnp.concatenate([u_obs, grown], axis=1), valid)
+        blocked = jnp.stack([blocked, blocked_near, by_mover, starts])
     else:
         u_obs, valid = obstacle_inputs(obs.ir, angles)
         winners = jax.vmap(lambda u: winner(ekm.w, u, cfg))(u_obs)
         b = obstacle_field(ekm.w, winners, valid, p, cfg)
-        blocked = jnp.zeros((3, ekm.w.shape[0] + 1), bool)
+        blocked = jnp.zeros((4, ekm.w.shape[0] + 1), bool)
     return state, Tick(s, g_a, b, g_a - b, u_obs, valid), blocked
 
 
-def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMConfig, direct=True, blocked_near=None):
+def commitment_starts(target, u_obs, still, clear, p: FieldParams, *, radius: float):
+    """Whether the still obstacles ``u_obs`` ``(K, 2)`` (where ``still``), each with its clearance ``clear`` ``(K,)``
+    (m, :func:`gap_clearance`), block the straight way to the ``target`` (α, d) enough to start the commitment to a
+    side: for the body and its clearance, or — with ``narrow_start``, beside an obstacle whose clearance the passage
+    narrowed below ``p.clearance`` — for the body itself. Why: off a niche's centre line by a few millimetres the
+    body and its clearance never see the way in open, and the committed robot went round the room instead of in
+    (issue 35, ``niches``); the commitment, once started, still lasts while the way is blocked with the clearance."""
+    if p.narrow_start:
+        clear = jnp.where(clear < p.clearance, 0.0, clear)
+    return mem.blocked_along(target[:1], target[1], u_obs, still, radius=radius, clearance=clear)[0]
+
+
+def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMConfig, direct=True, blocked_near=None,
+                     starts=None):
     """The winner when the robot commits to one side of an obstacle (``form=extended``; see the module
     docstring). ``blocked`` ``(N² + 1,)``: which neurons' directions and (last) the target's a remembered
-    obstacle blocks nearer than the target (:func:`memory.blocked_along`). Returns ``(k, side)``.
+    obstacle blocks nearer than the target (:func:`memory.blocked_along`); ``starts``: whether the way is blocked
+    enough to start a commitment (default: ``blocked[-1]``; with ``narrow_start``, in a narrow passage for the body
+    itself). Returns ``(k, side)``.
 
     While a remembered obstacle lies between the robot and the target (the target's direction blocked),
-    the robot keeps to the side the thesis's winner ``k`` lay on when that began,
+    the robot keeps to the side the thesis's winner ``k`` lay on when that began (when ``starts``),
     and takes the first *open* direction met turning from the target's direction towards that side —
     open: no remembered obstacle along it nearer than the target — as a robot going round an obstacle
     with it on the other hand. Among the neurons of that direction, the target field (Eq. 5.3, its angle
@@ -350,8 +381,9 @@ def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMCon
     the thesis's winner stands; when the way to the target is open again, the commitment ends.
     """
     way_blocked = blocked[-1]
+    starts = way_blocked if starts is None else starts
     first_side = jnp.where(wrap(w[k, 0] - target[0]) >= 0, 1.0, -1.0)
-    side = jnp.where(way_blocked, jnp.where(side == 0, first_side, side), 0.0)
+    side = jnp.where(way_blocked, jnp.where(side == 0, jnp.where(starts, first_side, 0.0), side), 0.0)
     swept = jnp.mod(side * (w[:, 0] - target[0]), 2.0 * jnp.pi) / jnp.pi  # 0 … 2 half-turns, one way round
     dd = relative(w[winner(w, target, cfg)], w, cfg)[:, 1]
     g = jnp.exp(-(p.gamma_alpha * swept**2 + p.gamma_d * dd**2) / p.sigma_a**2)
@@ -376,7 +408,7 @@ def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p:
     if p.form == "extended" and p.commit:
         k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked[0], p, cfg,
                                    direct=~movers_near(obs, radius, p.mover_near) & ~blocked[2, -1],
-                                   blocked_near=blocked[1, :-1])
+                                   blocked_near=blocked[1, :-1], starts=blocked[3, -1])
         state = state._replace(side=side)
     u = jnp.where(k == f.s, obs.target, ekm.w[k])  # Eq. 5.5: M_k u_p only for k = s, else M_k w_k
     c = indirect.command(ekm, u, k, cfg)
@@ -400,10 +432,16 @@ def guard(c, u_obs, valid, radius: float, p: FieldParams):
     """The wheel command ``c`` ``(2,)`` with its forward (or backward) speed limited so that the robot needs at
     least ``guard_s`` to reach the nearest remembered obstacle in the body-wide cone straight ahead (behind,
     when it reverses); its turn rate is kept. The fields choose a *displacement*, but the wheels reach it
-    along an arc that leaves along the current heading: this keeps that first stretch clear."""
+    along an arc that leaves along the current heading: this keeps that first stretch clear. With ``guard_room``
+    the body is grown by ``guard_clearance`` or, if less, the room the robot has now less ``guard_margin``: a
+    robot already nearer than ``guard_clearance`` to a wall beside it (in a niche hardly wider than itself) would
+    otherwise find that wall in its way at every heading but the wall's own, and stand (issue 35)."""
     v, turn = 0.5 * (c[0] + c[1]), 0.5 * (c[1] - c[0])
     heading = jnp.where(v >= 0, 0.0, jnp.pi)
-    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=p.guard_clearance)
+    clear = p.guard_clearance
+    if p.guard_room:  # no more than the room the robot has now: a wall alongside, already nearer, does not stop it
+        clear = jnp.clip(jnp.min(jnp.where(valid, u_obs[:, 1], jnp.inf)) - p.guard_margin, 0.0, clear)
+    half = mem.cone_half_width(u_obs[:, 1], radius=radius, clearance=clear)
     ahead = valid & (jnp.abs(wrap_near(heading - u_obs[:, 0])) < half)
     free = jnp.min(jnp.where(ahead, u_obs[:, 1], jnp.inf))
     limit = jnp.maximum(free - 0.5 * p.clearance, 0.0) / p.guard_s

@@ -218,3 +218,47 @@ def test_the_fields_keep_a_wall_end_a_ray_passes_8_mm_beside(signed_map, see_thr
     missed = observation(np.full(12, np.inf), target=(0.0, 0.3), t=0.128, pose=(0.5, 0.508, 0.0))
     state, _, _ = fields.fields(state, ekm, missed, angles, p, cfg, **kw)
     assert int(np.isfinite(np.asarray(state.memory.seen)).sum()) == remembered
+
+
+# narrow places (issue 35, niches): where the commitment starts, and a guard that lets the robot run beside a wall
+
+def passage(width, offset, r=GAP_R):
+    """Remembered points (α, d from the body surface) of two walls parallel to the robot's heading, ``width`` apart
+    (surface to surface), every centimetre from 2 to 15 cm ahead, the robot's centre ``offset`` off the passage's
+    centre line towards the left wall."""
+    x = np.arange(0.02, 0.155, 0.01)
+    pts = np.concatenate([np.stack([x, np.full_like(x, width / 2 - offset)], 1),
+                          np.stack([x, np.full_like(x, -width / 2 - offset)], 1)])
+    return jnp.asarray(np.stack([np.arctan2(pts[:, 1], pts[:, 0]), np.hypot(pts[:, 0], pts[:, 1]) - r], 1), jnp.float32)
+
+
+@pytest.mark.parametrize("narrow_start", [True, False])
+def test_in_a_narrow_passage_the_commitment_starts_only_when_the_body_itself_would_touch(narrow_start):
+    """By hand, body radius R = 2.5 cm (GAP_R), target 20 cm straight ahead. An 8 cm passage leaves the body 3 cm of
+    room: a quarter, 7.5 mm, of clearance. 8 mm off its centre line the robot's straight way passes the left wall
+    at 4 − 0.8 = 3.2 cm from its centre: more than R (the body passes), less than R + 7.5 mm = 3.25 cm (the body
+    and its clearance do not). So the commitment starts only without narrow_start. A 20 cm passage keeps 1 cm of
+    clearance: a wall 3.2 cm from the way (the robot 6.8 cm off centre) starts it either way (R + 1 cm = 3.5 cm)."""
+    p = FieldParams(narrow_start=narrow_start)
+    target = jnp.asarray([0.0, 0.2], jnp.float32)
+    for width, offset, expected in [(0.08, 0.008, not narrow_start), (0.08, 0.0, False), (0.2, 0.068, True)]:
+        u = passage(width, offset)
+        valid = jnp.ones(u.shape[0], bool)
+        clear = gap_clearance(u, valid, 0.0, GAP_R, p)
+        assert float(jnp.max(clear)) == pytest.approx(min(0.25 * (width - 2 * GAP_R), 0.01), abs=2e-4)
+        assert bool(fields.commitment_starts(target, u, valid, clear, p, radius=GAP_R)) == expected, (width, offset)
+
+
+@pytest.mark.parametrize("guard_room, expected", [(True, [0.10, 0.10]), (False, [0.0070522, 0.0070522])])
+def test_the_guard_lets_the_robot_run_beside_a_wall_it_is_already_nearer_than_the_clearance(guard_room, expected):
+    """By hand, R = 2.5 cm: a remembered point 1 cm ahead and 3.2 cm to the left of the robot's centre, 3.3526 cm
+    from it, d = 8.5261 mm from the body. With the fixed 1 cm clearance the straight way ahead (3.2 < R + 1 cm = 3.5
+    cm) meets it: the forward speed is held to (d − clearance / 2) / guard_s = (0.0085261 − 0.005) / 0.5 =
+    0.0070522 m/s, and the robot stands beside the wall. With guard_room the clearance is the room it has, less
+    guard_margin: 8.526 − 3 = 5.526 mm, and R + 5.526 mm = 3.05 cm < 3.2 cm: the point is beside its way, and the
+    command (0.10, 0.10) passes as it is."""
+    p = FieldParams(guard_room=guard_room)
+    x, y = 0.01, 0.032
+    u = jnp.asarray([[math.atan2(y, x), math.hypot(x, y) - 0.025]], jnp.float32)
+    c = fields.guard(jnp.asarray([0.10, 0.10], jnp.float32), u, jnp.asarray([True]), 0.025, p)
+    np.testing.assert_allclose(np.asarray(c), expected, atol=2e-6)
