@@ -274,6 +274,16 @@ def collision_times(positions, velocities, radii, grid: VelocityGrid, valid=None
     return jnp.min(t, axis=0) if t.shape[0] else jnp.full(grid.shape, jnp.inf, jnp.float32)
 
 
+def travel_to_touch(along, c):
+    """How far the robot's centre travels straight along a direction before a disc of radius ρ round it touches a
+    point: ``along`` the point's coordinate along the direction and ``c`` = |q|² − ρ² (q the point from the centre),
+    any shape: the nearer root of |q − s e| = ρ, along − √(along² − c); ``inf`` when the line passes it or it is
+    behind; 0 when the disc already holds it and the direction closes in on it."""
+    disc = along**2 - c
+    d = jnp.where((along > 0) & (disc >= 0), along - jnp.sqrt(jnp.maximum(disc, 0.0)), jnp.inf)
+    return jnp.where(c <= 0, jnp.where(along > 0, 0.0, jnp.inf), d)
+
+
 def ray_distances(positions, radii, grid: VelocityGrid, valid=None):
     """For stationary discs at ``positions`` ``(k, 2)`` of ``radii`` ``(k,)``: the distance ``(n_dir,)`` the
     robot travels along each direction before it touches the first one (``inf``: none; 0 when it already
@@ -284,11 +294,7 @@ def ray_distances(positions, radii, grid: VelocityGrid, valid=None):
     rho = jnp.asarray(radii, jnp.float32)[:, None]
     a = jnp.asarray(grid.angles())
     e = jnp.stack([jnp.cos(a), jnp.sin(a)], axis=-1)[None]  # (1, n_dir, 2)
-    along = jnp.sum(q * e, axis=-1)  # (k, n_dir)
-    c = jnp.sum(q * q, axis=-1) - rho**2
-    disc = along**2 - c
-    d = jnp.where((along > 0) & (disc >= 0), along - jnp.sqrt(jnp.maximum(disc, 0.0)), jnp.inf)
-    d = jnp.where(c <= 0, jnp.where(along > 0, 0.0, jnp.inf), d)
+    d = travel_to_touch(jnp.sum(q * e, axis=-1), jnp.sum(q * q, axis=-1) - rho**2)  # (k, n_dir)
     if valid is not None:
         d = jnp.where(jnp.asarray(valid)[:, None], d, jnp.inf)
     return jnp.min(d, axis=0) if d.shape[0] else jnp.full((grid.directions,), jnp.inf, jnp.float32)

@@ -300,7 +300,7 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
     obstacles (those on a declared mover left out while ``mover_ahead_s`` places the movers, :func:`mover_inputs`),
     then builds b from those nearer than the target (:func:`body_field`). Also returns, for
     :func:`committed_winner`, which of the neurons' directions and (last) the target's are blocked
-    (:func:`memory.blocked_along`; none for ``form=thesis``) ``(3, N² + 1)``: row 0 by anything nearer than the
+    (:func:`memory.blocked_along`; none for ``form=thesis``) ``(4, N² + 1)``: row 0 by anything nearer than the
     target, except that the target's own direction counts still obstacles only (a mover passes: the robot does
     not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a mover; row 3 (the target's
     direction only, last) blocked enough to start the commitment to a side (``narrow_start``)."""

@@ -23,6 +23,7 @@ import jax
 import jax.numpy as jnp
 
 from ekm.angles import wrap, wrap_near
+from robots.controllers.actionmaps import travel_to_touch
 from robots.controllers.base import hit_points
 
 
@@ -195,12 +196,19 @@ def cone_half_width(d, *, radius: float, clearance: float):
     return jnp.arcsin(jnp.clip((radius + clearance) / jnp.maximum(d + radius, 1e-6), 0.0, 1.0))
 
 
-def blocked_along(directions, reach, u_obs, valid, *, radius: float, clearance: float):
-    """For each direction ``(n,)`` (rad, robot frame): does an obstacle of ``u_obs`` ``(K, 2)`` (where ``valid``)
-    lie in the body-wide cone along it, nearer than ``reach`` (m)?"""
-    half = cone_half_width(u_obs[:, 1], radius=radius, clearance=clearance)
-    off = jnp.abs(wrap_near(directions[:, None] - u_obs[None, :, 0]))
-    return jnp.any(valid[None, :] & (u_obs[None, :, 1] < reach) & (off < half[None, :]), axis=1)
+def blocked_along(directions, reach, u_obs, valid, *, radius: float, clearance):
+    """For each direction ``(n,)`` (rad, robot frame): would the body, grown by ``clearance`` (m, or one per obstacle
+    ``(K,)``), touch an obstacle of ``u_obs`` ``(K, 2)`` (where ``valid``) driving straight along it before its
+    centre has covered ``reach`` (m)? An obstacle r = d + R from the centre and ``off`` from the direction, at
+    x = r cos(off) along it and y = r sin(off) across, is in the way if |y| < R + c — the body-wide cone of
+    :func:`cone_half_width` — and is touched after s = x − √((R + c)² − y²) (:func:`~robots.controllers.actionmaps.
+    travel_to_touch`, Samba's ray distances). Why s and not d: an obstacle beside
+    a target, nearer than it from the body's surface but past it along the way (a wall beside a checkpoint at a
+    corridor's bend), does not stand between the robot and the target (issue 35, ``corridor:9``)."""
+    grown = radius + jnp.broadcast_to(jnp.asarray(clearance, jnp.float32), u_obs[:, 1].shape)
+    r = u_obs[None, :, 1] + radius
+    along = r * jnp.cos(wrap_near(directions[:, None] - u_obs[None, :, 0]))
+    return jnp.any(valid[None, :] & (travel_to_touch(along, jnp.square(r) - jnp.square(grown[None, :])) < reach), axis=1)
 
 
 #: m beyond a declared mover's radius within which an IR return is bound to the mover's marker.

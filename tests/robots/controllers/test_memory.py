@@ -43,6 +43,23 @@ def test_blocked_along_uses_the_bodys_width_at_the_obstacles_distance():
     assert not bool(memory.blocked_along(dirs[:1], 0.15, u, jnp.asarray([True]), radius=0.025, clearance=0.01)[0])
 
 
+def test_blocked_along_measures_how_far_the_centre_travels_before_the_grown_body_touches():
+    """By hand, R = 2.5 cm, clearance 1 cm (grown 3.5 cm). Straight ahead, a point 20 cm from the surface (22.5 cm
+    from the centre) is touched after 22.5 − 3.5 = 19 cm: it blocks a reach of 19.5 cm, not one of 18.5 cm. A point
+    19 cm along and 3.4 cm across (19.3018 cm from the centre, d = 16.8018 cm) is touched after
+    19 − √(3.5² − 3.4²) = 19 − 0.83066 = 18.1693 cm: it does not block a target 17.5 cm ahead, though nearer than it
+    from the body's surface (a wall beside a checkpoint at a bend), and blocks one 18.5 cm ahead."""
+    kw = dict(radius=0.025, clearance=0.01)
+    ahead = jnp.zeros(1)
+    on = jnp.asarray([True])
+    head_on = jnp.asarray([[0.0, 0.2]], jnp.float32)
+    assert bool(memory.blocked_along(ahead, 0.195, head_on, on, **kw)[0])
+    assert not bool(memory.blocked_along(ahead, 0.185, head_on, on, **kw)[0])
+    beside = jnp.asarray([[math.atan2(0.034, 0.19), math.hypot(0.19, 0.034) - 0.025]], jnp.float32)
+    assert not bool(memory.blocked_along(ahead, 0.175, beside, on, **kw)[0])
+    assert bool(memory.blocked_along(ahead, 0.185, beside, on, **kw)[0])
+
+
 # ----------------------------------------------------------------------------------------------- fast paths
 
 # `_add_hits` adds a tick's hits without a loop over the memory; `_add_hits_in_turn` is the definition (one
