@@ -300,8 +300,8 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
     obstacles (those on a declared mover left out while ``mover_ahead_s`` places the movers, :func:`mover_inputs`),
     then builds b from those nearer than the target (:func:`body_field`). Also returns, for
     :func:`committed_winner`, which of the neurons' directions and (last) the target's are blocked
-    (:func:`memory.blocked_along`; none for ``form=thesis``) ``(4, N² + 1)``: row 0 by anything nearer than the
-    target, except that the target's own direction counts still obstacles only (a mover passes: the robot does
+    (:func:`memory.blocked_along`; none for ``form=thesis``) ``(4, N² + 1)``: row 0 by anything the body would
+    touch before reaching the target, except that the target's own direction counts still obstacles only (a mover passes: the robot does
     not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a mover; row 3 (the target's
     direction only, last) blocked enough to start the commitment to a side (``narrow_start``)."""
     s = winner(ekm.w, obs.target, cfg)
@@ -375,8 +375,8 @@ def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMCon
     While a remembered obstacle lies between the robot and the target (the target's direction blocked),
     the robot keeps to the side the thesis's winner ``k`` lay on when that began (when ``starts``),
     and takes the first *open* direction met turning from the target's direction towards that side —
-    open: no remembered obstacle along it nearer than the target — as a robot going round an obstacle
-    with it on the other hand. Among the neurons of that direction, the target field (Eq. 5.3, its angle
+    open: no remembered obstacle the body would touch along it before the target's distance — as a robot
+    going round an obstacle with it on the other hand. Among the neurons of that direction, the target field (Eq. 5.3, its angle
     measured one way round only) picks the one nearest the target's distance. When no direction is open
     the thesis's winner stands; when the way to the target is open again, the commitment ends.
     """
