@@ -376,8 +376,8 @@ def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMCon
     the robot keeps to the side the thesis's winner ``k`` lay on when that began (when ``starts``),
     and takes the first *open* direction met turning from the target's direction towards that side —
     open: no remembered obstacle the body would touch along it before the target's distance — as a robot
-    going round an obstacle with it on the other hand. Among the neurons of that direction, the target field (Eq. 5.3, its angle
-    measured one way round only) picks the one nearest the target's distance. When no direction is open
+    going round an obstacle with it on the other hand. Among the neurons of that direction, the target field
+    (Eq. 5.3, its angle measured one way round only) picks the one nearest the target's distance. When no direction is open
     the thesis's winner stands; when the way to the target is open again, the commitment ends.
     """
     way_blocked = blocked[-1]
