@@ -301,9 +301,10 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
     then builds b from those nearer than the target (:func:`body_field`). Also returns, for
     :func:`committed_winner`, which of the neurons' directions and (last) the target's are blocked
     (:func:`memory.blocked_along`; none for ``form=thesis``) ``(4, N² + 1)``: row 0 by anything the body would
-    touch before reaching the target, except that the target's own direction counts still obstacles only (a mover passes: the robot does
-    not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a mover; row 3 (the target's
-    direction only, last) blocked enough to start the commitment to a side (``narrow_start``)."""
+    touch before reaching the target, except that the target's own direction counts still obstacles only (a mover
+    passes: the robot does not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a
+    mover; row 3 (the target's direction only, last) blocked enough to start the commitment to a side
+    (``narrow_start``)."""
     s = winner(ekm.w, obs.target, cfg)
     g_a = target_field(ekm.w, s, p, cfg)
     if p.form == "extended":
@@ -377,8 +378,8 @@ def committed_winner(w, k, b, target, side, blocked, p: FieldParams, cfg: EKMCon
     and takes the first *open* direction met turning from the target's direction towards that side —
     open: no remembered obstacle the body would touch along it before the target's distance — as a robot
     going round an obstacle with it on the other hand. Among the neurons of that direction, the target field
-    (Eq. 5.3, its angle measured one way round only) picks the one nearest the target's distance. When no direction is open
-    the thesis's winner stands; when the way to the target is open again, the commitment ends.
+    (Eq. 5.3, its angle measured one way round only) picks the one nearest the target's distance. When no direction
+    is open the thesis's winner stands; when the way to the target is open again, the commitment ends.
     """
     way_blocked = blocked[-1]
     starts = way_blocked if starts is None else starts

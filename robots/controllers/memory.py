@@ -208,7 +208,8 @@ def blocked_along(directions, reach, u_obs, valid, *, radius: float, clearance):
     grown = radius + jnp.broadcast_to(jnp.asarray(clearance, jnp.float32), u_obs[:, 1].shape)
     r = u_obs[None, :, 1] + radius
     along = r * jnp.cos(wrap_near(directions[:, None] - u_obs[None, :, 0]))
-    return jnp.any(valid[None, :] & (travel_to_touch(along, jnp.square(r) - jnp.square(grown[None, :])) < reach), axis=1)
+    touched = travel_to_touch(along, jnp.square(r) - jnp.square(grown[None, :]))
+    return jnp.any(valid[None, :] & (touched < reach), axis=1)
 
 
 #: m beyond a declared mover's radius within which an IR return is bound to the mover's marker.
