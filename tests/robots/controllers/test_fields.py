@@ -188,6 +188,22 @@ def test_a_mover_on_its_way_closes_the_direction_it_will_cross(signed_map):
     assert abs(float(ekm.w[k_ahead, 0])) > 0.2  # off the mover's coming path
 
 
+@pytest.mark.parametrize("place, velocity, track_near", [((0.08, 0.05), (0.0, -0.04), False),
+                                                      ((0.06, 0.05), (0.0, -0.04), True),
+                                                      ((0.06, 0.05), (0.0, 0.04), False),
+                                                      ((0.06, 0.05), (0.0, 0.0), False),
+                                                      ((0.04, 0.04), (0.0, 0.0), True)])
+def test_a_mover_is_near_when_its_track_passes_the_robot(place, velocity, track_near):
+    """The robot (radius 2.5 cm) at the origin; a mover of radius 3 cm within mover_near = 15 cm in every case. By
+    its track (the clearance 1 cm): coming down along x = 8 cm it passes 8 − 3 − 2.5 = 2.5 cm from the body (not
+    near: the lane beside a corridor's mover), along x = 6 cm 0.5 cm (near); going away from (6, 5) cm or standing
+    there, it counts where it is, hypot(6, 5) − 5.5 = 2.31 cm (not near); standing at (4, 4) cm, 0.16 cm (near).
+    Without the track every one is near."""
+    obs = observation(np.full(12, np.inf), target=(0.0, 0.3), markers=[[*place, *velocity, 0.03]], pose=(0, 0, 0))
+    assert bool(fields.movers_near(obs, 0.025, 0.15, 0.01)) is track_near
+    assert bool(fields.movers_near(obs, 0.025, 0.15))
+
+
 def test_the_fields_step_straight_out_of_a_movers_way(signed_map):
     """As Samba's test (tests/robots/controllers/test_samba.py): the robot at (0.5, 0.5) facing +x, its checkpoint
     to its left; a mover of radius 2.5 cm 12 cm to its left comes at it at 0.1 m/s. Standing, the discs grown by
