@@ -283,6 +283,20 @@ class Tick(NamedTuple):
     valid: jax.Array
 
 
+class Blocked(NamedTuple):
+    """Which of the neurons' directions and (last) the target's are blocked ``(N² + 1,)`` each, for
+    :func:`committed_winner` (:func:`memory.blocked_along`; none for ``form=thesis``): ``way`` by anything the body
+    would touch before reaching the target, except that the target's own direction counts still obstacles only (a
+    mover passes: the robot does not commit to going round it); ``near`` for the body alone as far as ``near``;
+    ``mover`` by a mover; and ``starts`` ``()``, whether the target's direction is blocked enough to start the
+    commitment to a side (:func:`commitment_starts`)."""
+
+    way: jax.Array
+    near: jax.Array
+    mover: jax.Array
+    starts: jax.Array
+
+
 class FieldState(NamedTuple):
     """What the fields carry between ticks: the remembered obstacles (``form=extended``), the side the robot
     keeps to (+1 left, −1 right, 0 none) and the last winners s and k (for plots)."""
@@ -300,16 +314,11 @@ def init(p: FieldParams) -> FieldState:
 
 
 def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg: EKMConfig, *, radius: float,
-           range_m: float) -> tuple[FieldState, Tick, jax.Array]:
+           range_m: float) -> tuple[FieldState, Tick, Blocked]:
     """Eq. 5.1–5.3 and 5.6 for one tick. ``form=extended`` first adds the tick's readings to the remembered
     obstacles (those on a declared mover left out while ``mover_ahead_s`` places the movers, :func:`mover_inputs`),
     then builds b from those nearer than the target (:func:`body_field`). Also returns, for
-    :func:`committed_winner`, which of the neurons' directions and (last) the target's are blocked
-    (:func:`memory.blocked_along`; none for ``form=thesis``) ``(4, N² + 1)``: row 0 by anything the body would
-    touch before reaching the target, except that the target's own direction counts still obstacles only (a mover
-    passes: the robot does not commit to going round it); row 1 for the body alone as far as ``near``; row 2 by a
-    mover; row 3 (the target's direction only, last) blocked enough to start the commitment to a side
-    (``narrow_start``)."""
+    :func:`committed_winner`, the directions that are blocked (:class:`Blocked`)."""
     s = winner(ekm.w, obs.target, cfg)
     g_a = target_field(ekm.w, s, p, cfg)
     if p.form == "extended":
@@ -339,22 +348,21 @@ def fields(state: FieldState, ekm, obs: Observation, angles, p: FieldParams, cfg
             blocked = mem.blocked_along(directions, obs.target[1], u, v, radius=radius, clearance=clear)
             # the way to the target counts as blocked (the commitment to a side) for still obstacles only: a mover
             # passes, and going round it as round a wall took the robot round the room (issue 32)
-            way = mem.blocked_along(directions[-1:], obs.target[1], u, v & (r == 0), radius=radius, clearance=clear)
-            starts = commitment_starts(obs.target, u, v & (r == 0), clear, p, radius=radius)
-            return (body_field(ekm.w, u, v, radius, p, cfg, clear), blocked.at[-1].set(way[0]),
-                    mem.blocked_along(directions, jnp.minimum(obs.target[1], p.near), u, v, radius=radius,
-                                      clearance=r),
-                    mem.blocked_along(directions, obs.target[1], u, v & (r > 0), radius=radius, clearance=clear),
-                    jnp.zeros_like(blocked).at[-1].set(starts))
+            way = mem.blocked_along(directions[-1:], obs.target[1], u, v & (r == 0), radius=radius,
+                                    clearance=clear)[0]
+            starts = commitment_starts(obs.target, u, v & (r == 0), clear, p, radius=radius) if p.narrow_start else way
+            return body_field(ekm.w, u, v, radius, p, cfg, clear), Blocked(
+                blocked.at[-1].set(way),
+                mem.blocked_along(directions, jnp.minimum(obs.target[1], p.near), u, v, radius=radius, clearance=r),
+                mem.blocked_along(directions, obs.target[1], u, v & (r > 0), radius=radius, clearance=clear), starts)
 
-        b, blocked, blocked_near, by_mover, starts = mem.over_packed(
-            per_neuron, jnp.concatenate([u_obs, grown], axis=1), valid)
-        blocked = jnp.stack([blocked, blocked_near, by_mover, starts])
+        b, blocked = mem.over_packed(per_neuron, jnp.concatenate([u_obs, grown], axis=1), valid)
     else:
         u_obs, valid = obstacle_inputs(obs.ir, angles)
         winners = jax.vmap(lambda u: winner(ekm.w, u, cfg))(u_obs)
         b = obstacle_field(ekm.w, winners, valid, p, cfg)
-        blocked = jnp.zeros((4, ekm.w.shape[0] + 1), bool)
+        none = jnp.zeros(ekm.w.shape[0] + 1, bool)
+        blocked = Blocked(none, none, none, jnp.asarray(False))
     return state, Tick(s, g_a, b, g_a - b, u_obs, valid), blocked
 
 
@@ -413,9 +421,9 @@ def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p:
     k = jnp.argmax(f.a)
     if p.form == "extended" and p.commit:
         near = movers_near(obs, radius, p.mover_near, p.clearance if p.mover_track else None)
-        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked[0], p, cfg,
-                                   direct=~near & ~blocked[2, -1],
-                                   blocked_near=blocked[1, :-1], starts=blocked[3, -1])
+        k, side = committed_winner(ekm.w, k, f.b, obs.target, state.side, blocked.way, p, cfg,
+                                   direct=~near & ~blocked.mover[-1], blocked_near=blocked.near[:-1],
+                                   starts=blocked.starts)
         state = state._replace(side=side)
     u = jnp.where(k == f.s, obs.target, ekm.w[k])  # Eq. 5.5: M_k u_p only for k = s, else M_k w_k
     c = indirect.command(ekm, u, k, cfg)
