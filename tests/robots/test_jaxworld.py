@@ -167,6 +167,20 @@ def test_ir_of_a_hand_built_scene(engine):
     assert readings == pytest.approx([0.075, 0.095, 0.090], abs=1e-9)
 
 
+@pytest.mark.parametrize("ahead, seen", [(0.047, False), (0.045, True)])
+def test_the_long_ring_first_sees_a_thin_pillar_just_off_the_line_of_travel_a_centimetre_from_the_body(engine, ahead,
+                                                                                                       seen):
+    # Twelve directed rays 30° apart (the thesis's long-range ring) leave wedges no ray looks into: a pillar of
+    # radius r = 1 cm whose centre is y = 1.5 cm right of the line of travel is never on the 0° ray (1.5 > r) and
+    # first on the -30° ray (index 11) when its centre is x = (r + y cos 30°) / sin 30° = 2r + √3 y = 4.60 cm ahead
+    # — its surface then √(4.6² + 1.5²) - 2.5 - 1 = 1.34 cm from the body's, while the robot covers 2 cm a tick at
+    # top speed. At 4.7 cm the ray passes 4.7 sin 30° - 1.5 cos 30° = 1.05 cm from the pillar's centre (a miss); at
+    # 4.5 cm, 0.95 cm (a hit). The arena's border is out of range (22 cm and more from the body).
+    sim = engine(world(start=[0.5, 0.25, 0.0], obstacles=[{"type": "circle", "center": [0.5 + ahead, 0.235],
+                                                           "radius": 0.01}]))
+    assert np.isfinite(sim.ranges(KHEPERA.long_range)).tolist() == [False] * 11 + [seen]
+
+
 # ------------------------------------------------------------------------------------------------ JAX only
 def test_a_batch_of_different_worlds_steps_as_each_alone():
     worlds = [world(walls=WALL), world(obstacles=[{"type": "polygon", "points": [[0.5, 0.1], [0.7, 0.1], [0.7, 0.4],
