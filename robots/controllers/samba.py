@@ -271,13 +271,17 @@ def choose(goto, times, heading, theta, obs: Observation, p: SambaParams, grid: 
 
 def in_a_gap(points, valid, direction, length: float, half_width: float):
     """Whether remembered ``points`` ``(n, 2)`` (robot frame, where ``valid``) lie on both sides of the way along
-    ``direction`` (rad): each side has one within ``half_width`` (m) of the line, from ``length`` behind the robot to
-    twice ``length`` ahead — the narrow place of a gap, not a wall the robot would slide along."""
+    ``direction`` (rad), from ``length`` behind the robot to twice ``length`` ahead, nearer each other across the way
+    than ``2 half_width`` (m): the nearest on the left at l, on the right at r from the line, l + r < 2 half_width —
+    the narrow place of a gap, not a wall the robot would slide along. The width, not each side's distance: a robot
+    off a slot's centre line (or a point read a few millimetres into a wall) has one side beyond ``half_width``."""
     e = jnp.stack([jnp.cos(direction), jnp.sin(direction)])
     along = points @ e
     lateral = e[0] * points[:, 1] - e[1] * points[:, 0]
-    beside = valid & (along >= -length) & (along <= 2.0 * length) & (jnp.abs(lateral) < half_width)
-    return jnp.any(beside & (lateral > 0)) & jnp.any(beside & (lateral < 0))
+    beside = valid & (along >= -length) & (along <= 2.0 * length)
+    left = jnp.min(jnp.where(beside & (lateral > 0), lateral, jnp.inf))
+    right = jnp.min(jnp.where(beside & (lateral < 0), -lateral, jnp.inf))
+    return left + right < 2.0 * half_width
 
 
 def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams = KHEPERA) -> Tick:
@@ -286,7 +290,7 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
 
     When the Avoid map at ``clearance`` has left no action to send for ``squeeze_s``, and the maps made at
     ``squeeze`` send the robot a body's length (twice its radius) or more before any contact between remembered
-    points on both sides (:func:`in_a_gap`) — through a gap, not closer to a wall or along it — those maps drive it
+    points on both sides, nearer each other than the body and two clearances (:func:`in_a_gap`) — through a gap, not closer to a wall or along it — those maps drive it
     (an extension, issue 35) until the wide ones have an action again. Why: a robot in a gap of a pillar forest
     barely wider than its body plus twice the clearance had every way ahead closed by the points of both pillars
     and stood until the time limit; squeezing at once, or towards a shut door, drove robots into walls

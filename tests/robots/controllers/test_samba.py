@@ -324,9 +324,14 @@ def test_samba_squeezes_through_a_gap_narrower_than_its_body_and_two_clearances(
     ([[0.01, 0.033], [0.03, 0.034]], False),     # a wall on the left only
     ([[0.01, 0.033], [0.06, -0.033]], False),    # the right-hand point 6 cm ahead: beyond two radii
     ([[-0.03, 0.033], [0.01, -0.033]], False),   # the left-hand point 3 cm behind: more than a radius back
-    ([[0.01, 0.036], [0.01, -0.033]], False),    # the left-hand point 3.6 cm off the line: outside 3.5 cm
+    ([[0.01, 0.036], [0.01, -0.033]], True),     # 3.6 cm off the line on the left: 6.9 cm across, under 7 cm
+    ([[0.01, 0.038], [0.01, -0.033]], False),    # 3.8 cm on the left: 7.1 cm across, over 2 (R + clearance)
+    ([[0.01, 0.020], [0.0, -0.05], [0.04, -0.045]], True),  # the robot 1.5 cm off a 6.5 cm slot's centre line
 ])
-def test_a_gap_is_remembered_points_on_both_sides_of_the_way_within_radius_plus_clearance(points, expected):
+def test_a_gap_is_remembered_points_on_both_sides_of_the_way_nearer_each_other_than_two_radii_and_clearances(
+        points, expected):
+    """By hand, R = 2.5 cm, clearance 1 cm: a gap when the nearest points left and right of the way, from R behind
+    to 2R ahead, are less than 2 (R + clearance) = 7 cm apart across it, wherever the robot is between them."""
     pts = jnp.asarray(points, jnp.float32)
     assert bool(samba.in_a_gap(pts, jnp.ones(len(pts), bool), 0.0, 0.025, 0.035)) is expected
     turned = pts @ jnp.asarray([[0.0, 1.0], [-1.0, 0.0]])  # the same scene turned by +90°, the way along +y
