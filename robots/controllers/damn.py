@@ -79,11 +79,15 @@ class DamnParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    see_through: float = field(default=0.005, metadata={
+        "help": "m from a ray within which a remembered point it passes, short of its hit, is forgotten (the "
+                "points' radius, merge / 2, as the fields')"})
     avoid: str = avoid_option("avoid: all, or nearer (the way to the checkpoint looks only as far as the checkpoint, "
                               "and at the goal no point beyond it counts; an extension)")
 
     def __post_init__(self):
-        for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "stop_within", "memory_s", "merge"):
+        for name in ("turn_gain", "turn_max", "look", "mover_s", "brake_s", "stop_within", "memory_s", "merge",
+                     "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
         for name in ("clearance", "avoid_weight", "goal_weight", "keep_weight"):
@@ -188,7 +192,8 @@ def votes(state: DamnState, obs: Observation, angles, p: DamnParams, robot: Robo
     """The state after this tick's sensing and the tick's :class:`Votes`."""
     sensors = ring(robot, p.sensors)
     memory, points, valid = sense(state.memory, obs, angles, radius=robot.radius, range_m=sensors.range_m,
-                                  merge=p.merge, memory_s=p.memory_s, nearer=p.avoid == "nearer")
+                                  merge=p.merge, memory_s=p.memory_s, through=p.see_through,
+                                  nearer=p.avoid == "nearer")
     pose = jnp.asarray(obs.pose, jnp.float32)
     theta = pose[2]
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)

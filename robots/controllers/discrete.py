@@ -74,16 +74,17 @@ def world_point(pose, target):
 
 
 def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, merge: float, memory_s: float,
-          nearer: bool = False):
+          through: float | None = None, nearer: bool = False):
     """The memory after this tick's IR (returns on a declared mover left to its marker) and every obstacle point
     in the robot's frame: ``(K + k, 2)`` points (the K remembered, then the nearest surface point of each of the
     k declared movers) and their mask — with ``nearer``, remembered points beyond the goal left out
-    (:func:`~robots.controllers.base.beyond_the_goal`; they stay remembered)."""
+    (:func:`~robots.controllers.base.beyond_the_goal`; they stay remembered). A ray forgets a remembered point it
+    passes within ``through`` of (m; ``merge`` when None: :func:`robots.controllers.memory.forget`)."""
     pose = jnp.asarray(obs.pose, jnp.float32)
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
     readings = mem.off_movers(pose, jnp.asarray(obs.ir, jnp.float32), angles, markers, radius=radius)
     memory = mem.update(memory, pose, readings, angles, obs.t, radius=radius, range_m=range_m, merge=merge,
-                        forget_after=memory_s)
+                        forget_after=memory_s, through=through)
     rel = jnp.concatenate([memory.points - pose[:2], markers[:, :2] - pose[:2]], axis=0)
     dist = jnp.sqrt(jnp.sum(jnp.square(rel), axis=1))
     surface = jnp.concatenate([jnp.zeros(memory.points.shape[0], jnp.float32), markers[:, 4]])

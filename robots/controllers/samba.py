@@ -8,7 +8,10 @@ Every 0.128 s tick, :func:`maps` (pure; :func:`step` is it jitted, plus the whee
    (:mod:`~robots.controllers.memory`: Riekki's egocentric markers "update the location of the object also
    on the basis of the robot's ego-motion"); a return that lies on a declared moving obstacle is bound to
    that obstacle's marker instead (``obs.markers``: position, velocity and radius). IR sees nothing
-   beyond 0.2 m from the centre (the long ring), so undeclared obstacles are known only that close.
+   beyond 0.2 m from the centre (the long ring), so undeclared obstacles are known only that close. A ray
+   forgets a remembered point only when it passes within ``see_through`` (5 mm, the points' radius) of it: with
+   the 1 cm of ``merge`` a ray grazing a pillar forgot the edge it had seen and the robot drove into the pillar
+   (issue 35; measured in docs/reproduce/every-kind.md).
 2. **The task marker** (§3.3.2) is the planner's current checkpoint, ``obs.target`` (α, d). At the final
    checkpoint of a moving goal it carries the goal's velocity (``obs.target_velocity``): the goal is a
    point IR cannot see, so its position and velocity come from the observation.
@@ -99,6 +102,9 @@ class SambaParams:
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    see_through: float = field(default=0.005, metadata={
+        "help": "m from a ray within which a remembered point it passes, short of its hit, is forgotten (the "
+                "points' radius, merge / 2, as the fields')"})
     squeeze: float = field(default=0.003, metadata={"help": "m added to the robot's radius instead of clearance once "
                                                            "clearance has left no action for squeeze_s (>= clearance: "
                                                            "never)"})
@@ -109,7 +115,7 @@ class SambaParams:
                                                            "out of the mover's way (0: never), s"})
 
     def __post_init__(self):
-        for name in ("tau_s", "avoid_ttc", "brake_s", "memory_s", "merge"):
+        for name in ("tau_s", "avoid_ttc", "brake_s", "memory_s", "merge", "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
         if min(self.full_s, self.clearance, self.squeeze, self.squeeze_s) < 0 or not 0 <= self.tie < 1 \
@@ -169,7 +175,7 @@ def bind(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
     ir = jnp.asarray(obs.ir, jnp.float32)
     readings = mem.off_movers(pose, ir, angles, markers, radius=robot.radius)
     memory = mem.update(state.memory, pose, readings, angles, obs.t, radius=robot.radius, range_m=sensors.range_m,
-                        merge=p.merge, forget_after=p.memory_s)
+                        merge=p.merge, forget_after=p.memory_s, through=p.see_through)
     objects, valid = esc.object_markers(memory.points, jnp.isfinite(memory.seen), markers, pose)
     return memory, objects, valid
 

@@ -118,13 +118,17 @@ class SubsumptionParams:
     memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
     memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
     merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
+    see_through: float = field(default=0.005, metadata={
+        "help": "m from a ray within which a remembered point it passes, short of its hit, is forgotten (the "
+                "points' radius, merge / 2, as the fields')"})
     avoid: str = avoid_option("which remembered points it avoids: all or nearer (at the goal, none beyond it; an "
                               "extension)")
 
     def __post_init__(self):
         for name in ("cruise", "slow", "creep", "arc_speed", "arc_turn", "spin", "back", "near", "flee", "halt",
                      "spin_above", "straight_within", "fine", "slow_within", "creep_within", "stop_within",
-                     "patience", "progress", "wander_s", "persistence", "back_s", "turn_s", "memory_s", "merge"):
+                     "patience", "progress", "wander_s", "persistence", "back_s", "turn_s", "memory_s", "merge",
+                     "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
         if not self.margin >= 0:
@@ -232,7 +236,7 @@ def layers(state: SubsumptionState, obs: Observation, angles, p: SubsumptionPara
     """Every layer for one tick, suppression and inhibition (the module docstring)."""
     t = jnp.asarray(obs.t, jnp.float32)
     memory, points, seen = sense(state.memory, obs, angles, radius=radius, range_m=range_m, merge=p.merge,
-                                 memory_s=p.memory_s, nearer=p.avoid == "nearer")
+                                 memory_s=p.memory_s, through=p.see_through, nearer=p.avoid == "nearer")
 
     # wander: a random response of (cruise, arc-left, arc-right), redrawn every ``persistence`` s
     key = state.key

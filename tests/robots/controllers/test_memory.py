@@ -1,5 +1,6 @@
-"""The extended fields' memory of obstacles (robots.controllers.memory): what it keeps, merges, clears and
-forgets, the body's width along a direction, and the fast paths, which give what the plain ones give."""
+"""The memory of obstacles (robots.controllers.memory) of the extended fields and the other architectures that
+remember: what it keeps, merges, clears and forgets, the body's width along a direction, and the fast paths,
+which give what the plain ones give."""
 
 import math
 
@@ -10,7 +11,9 @@ import pytest
 
 from robots.controllers import memory
 from robots.controllers.memory import _add_hits, _add_hits_in_turn, over_packed
+from robots.controllers.spec import parse_architecture
 from robots.params import LONG_RANGE
+from tests.robots.controllers.observations import long_ring, observation
 
 
 def test_memory_keeps_hits_merges_repeats_clears_what_a_ray_sees_through_and_forgets_old_points():
@@ -168,3 +171,21 @@ def test_a_point_sensed_on_a_declared_mover_is_forgotten_by_a_ray_passing_beside
     after = memory.update(m, jnp.asarray([0.5, 0.508, 0.0]), jnp.full(12, jnp.inf), angles, 1.0,
                           markers=jnp.asarray(markers), **kw)
     assert int(jnp.sum(jnp.isfinite(after.seen))) == int(kept)
+
+
+@pytest.mark.parametrize("spec, kept", [("samba", True), ("samba:see_through=0.01", False), ("damn", True),
+                                        ("subsumption", True), ("deliberation", False),
+                                        ("deliberation:see_through=0.005", True)])
+def test_each_architecture_that_remembers_forgets_a_point_a_ray_passes_beside_within_its_see_through(spec, kept):
+    """Through each architecture's own step: tick 1 at (0.5, 0.5) facing +x, sensor 0 sees a pillar's edge 10 cm
+    ahead, remembered at (0.625, 0.5); tick 2 at (0.5, 0.508), nothing seen: sensor 0's ray passes 8 mm beside the
+    point, 10 cm along (the other rays 6 cm and more away). Samba, DAMN and subsumption forget within 5 mm by
+    default and keep it — with 1 cm (merge) a ray grazing a pillar forgot its edge and the robot drove into it;
+    reactive deliberation keeps the 1 cm, which forgets it (docs/reproduce/every-kind.md)."""
+    ctl = parse_architecture(spec).build()
+    state, _ = ctl.step(ctl.init(), observation(long_ring(s0=0.1), target=(0.0, 0.3)))
+    assert int(np.isfinite(np.asarray(state.memory.seen)).sum()) == 1
+    np.testing.assert_allclose(np.asarray(state.memory.points)[np.isfinite(np.asarray(state.memory.seen))][0],
+                               [0.625, 0.5], atol=1e-6)
+    state, _ = ctl.step(state, observation(long_ring(), target=(0.0, 0.3), t=0.128, pose=(0.5, 0.508, 0.0)))
+    assert int(np.isfinite(np.asarray(state.memory.seen)).sum()) == int(kept)
