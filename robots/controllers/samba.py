@@ -296,11 +296,11 @@ def maps(state: SambaState, obs: Observation, p: SambaParams, robot: RobotParams
 
     When the Avoid map at ``clearance`` has left no action to send for ``squeeze_s``, and the maps made at
     ``squeeze`` send the robot a body's length (twice its radius) or more before any contact between remembered
-    points on both sides, nearer each other than the body and two clearances (:func:`in_a_gap`) — through a gap, not closer to a wall or along it — those maps drive it
-    (an extension, issue 35) until the wide ones have an action again. Why: a robot in a gap of a pillar forest
-    barely wider than its body plus twice the clearance had every way ahead closed by the points of both pillars
-    and stood until the time limit; squeezing at once, or towards a shut door, drove robots into walls
-    (``docs/reproduce/every-kind.md``)."""
+    points on both sides, nearer each other than the body and two clearances (:func:`in_a_gap`) — through a gap,
+    not closer to a wall or along it — those maps drive it (an extension, issue 35) until the wide ones have an
+    action again. Why: a robot in a gap of a pillar forest barely wider than its body plus twice the clearance had
+    every way ahead closed by the points of both pillars and stood until the time limit; squeezing at once, or
+    towards a shut door, drove robots into walls (``docs/reproduce/every-kind.md``)."""
     grid = p.grid(robot)
     memory, objects, valid = bind(state, obs, p, robot)
     goto = goto_map(obs, p, robot)
