@@ -97,6 +97,21 @@ def sense(memory: mem.Memory, obs, angles, *, radius: float, range_m: float, mer
     return memory, points, valid
 
 
+def as_readings(points, valid, angles, readings, *, radius: float, within: float = float("inf")):
+    """Each sensor's reading ``(m,)`` (m from the body surface, inf: nothing) with the obstacle points ``(K, 2)``
+    (robot frame, e.g. :func:`sense`'s; ``valid`` ``(K,)``) read too: a point counts for the sensor whose
+    direction ``angles`` ``(m,)`` (rad) is nearest its own, at its distance from the body surface, and each sensor
+    reads the nearer of its own ``readings`` ``(m,)`` and its points. Why: a reactive vehicle wired to its
+    sensors (ch. 4.4's Braitenberg type 3C) answers a wall end in the blind angle between two of them only
+    when it is sensed again, usually at contact; its sectors of the memory answer it as the body swings past."""
+    alpha = jnp.arctan2(points[:, 1], points[:, 0])
+    d = jnp.maximum(jnp.sqrt(jnp.sum(jnp.square(points), axis=1)) - radius, 0.0)
+    nearest = jnp.argmin(jnp.abs(wrap(alpha[:, None] - jnp.asarray(angles, jnp.float32)[None, :])), axis=1)
+    mine = (nearest[:, None] == jnp.arange(len(angles))[None, :]) & (valid & (d <= within))[:, None]  # (K, m)
+    remembered = jnp.min(jnp.where(mine, d[:, None], jnp.inf), axis=0)
+    return jnp.minimum(jnp.where(jnp.isfinite(readings), readings, jnp.inf), remembered)
+
+
 def way_out(obs, radius: float, within: float):
     """The declared mover closing on the robot within ``within`` (body to body), if any, and the way out of its
     line: (whether one does, unit world direction ``(2,)`` across the nearest such mover's line on the robot's

@@ -28,6 +28,15 @@ Three readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/archite
   a reversing robot meets a wall on its flank in the 75° between them and the side sensors. So the turned
   vehicle counts as forward-facing every sensor within ``back_cone`` (100°) of the way back, the side ones
   included; driving ahead, 60° as in ch. 4.4.
+- **What the vehicle reads.** Ch. 4.4's vehicle reads its sensors alone. The Khepera's eight leave blind
+  angles — 40° between the front-side pairs, 75° between the sides and the rear pair — and a robot that arcs
+  round the end of a thin wall meets it there, unsensed since its front pair lost it. With ``remember=true``
+  (the default, an extension) the IR hits are remembered in the world frame as Samba and the discrete
+  architectures remember them (:func:`robots.controllers.discrete.sense`, with the declared movers' nearest
+  points), and each sensor reads the nearer of its own return and the points in its sector within ``within``
+  (2 cm) of the body (:func:`robots.controllers.discrete.as_readings`): Z answers the wall end as the body swings
+  past it. Only what is near counts: read at every distance, a corridor's remembered walls fill every sector and
+  hold the robot at the first bend.
 
 Command fusion drives the polar-chart map by default (:data:`DEFAULT_CHART`): a signed-chart map
 reverses onto targets behind (:mod:`ekm.charts`), the polar one only onto those close behind, and a
@@ -48,16 +57,19 @@ import numpy as np
 
 from ekm import indirect
 from ekm.config import EKMConfig
+from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, avoid_option, proximity, readings_to_the_goal
 from robots.controllers.braitenberg import avoid, z_matrix
+from robots.controllers.discrete import as_readings, sense
 from robots.params import KHEPERA, RobotParams, SensorSet
 
 
 @dataclass(frozen=True)
 class FusionParams:
     """Parameters of command fusion; the defaults are the thesis's ch. 6.2.1 set-up but ``avoid`` (``nearer``, an
-    extension: at the goal nothing beyond it is avoided; ``all`` is ch. 4.5's) and ``facing`` (``travel``, an
-    extension: Z turned round while target reaching reverses; ``front`` is ch. 4.4's)."""
+    extension: at the goal nothing beyond it is avoided; ``all`` is ch. 4.5's), ``facing`` (``travel``, an
+    extension: Z turned round while target reaching reverses; ``front`` is ch. 4.4's) and ``remember`` (true, an
+    extension: the sensors also read the remembered IR points in their sectors; false is ch. 4.4's)."""
 
     sensors: str = field(default="short", metadata={"help": "IR ring: short (8 Khepera sensors, 5 cm) or long "
                                                             "(12 around, 17.5 cm)", "choices": ("short", "long")})
@@ -79,6 +91,18 @@ class FusionParams:
     back_cone: float = field(default=100.0, metadata={
         "help": "degrees: with facing=travel, how far from the way back a sensor counts as forward-facing while the "
                 "map reverses (the Khepera's rear pair is at 20 degrees, its sides at 95)"})
+    remember: bool = field(default=True, metadata={
+        "help": "each sensor also reads the remembered IR points (and declared movers) in its sector (an extension; "
+                "false: its own return alone, ch. 4.4)"})
+    within: float = field(default=0.02, metadata={"help": "remember=true: m from the body within which a remembered point "
+                                                         "is read"})
+    memory_points: int = field(default=128, metadata={"help": "remember=true: IR obstacle points remembered at most"})
+    memory_s: float = field(default=30.0, metadata={"help": "remember=true: s an IR obstacle point is remembered"})
+    merge: float = field(default=0.01, metadata={"help": "remember=true: m within which a hit refreshes a remembered "
+                                                         "point"})
+    see_through: float = field(default=0.005, metadata={
+        "help": "remember=true: m within which a ray passing a remembered point forgets it (the points' radius, "
+                "as Samba's)"})
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:
@@ -87,6 +111,11 @@ class FusionParams:
             raise ValueError(f"cross and same must be >= 0, got {self.cross}, {self.same}")
         if not 0.0 < self.back_cone <= 180.0:
             raise ValueError(f"back_cone must be in (0, 180] degrees, got {self.back_cone}")
+        for name in ("memory_s", "merge", "see_through", "within"):
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
+        if not (isinstance(self.memory_points, int) and self.memory_points >= 1):
+            raise ValueError(f"memory_points must be a whole number >= 1, got {self.memory_points}")
 
 
 #: The chart of the map command fusion drives when no map is given (see the module docstring).
@@ -94,33 +123,45 @@ DEFAULT_CHART = "polar"
 
 
 class FusionState(NamedTuple):
-    """The shared motor state: the last target-reaching command, when the next is due, for which checkpoint."""
+    """The shared motor state: the last target-reaching command, when the next is due, for which checkpoint; and
+    the remembered IR points (``remember``)."""
 
     c_p: jax.Array  # (2,) m/s
     due: jax.Array  # s: time of the next target-reaching update
     target_id: jax.Array  # the checkpoint c_p was computed for
+    memory: mem.Memory
 
 
 @cache
-def init() -> FusionState:
-    return FusionState(jnp.zeros(2, jnp.float32), jnp.zeros((), jnp.float32), jnp.asarray(-1, jnp.int32))
+def init(p: FusionParams = FusionParams()) -> FusionState:
+    return FusionState(jnp.zeros(2, jnp.float32), jnp.zeros((), jnp.float32), jnp.asarray(-1, jnp.int32),
+                       mem.empty(p.memory_points))
 
 
-@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer"))
+@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer", "remember", "radius"))
 def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
-         sensors: SensorSet, on_sensed: bool = False, nearer: bool = False):
+         sensors: SensorSet, on_sensed: bool = False, nearer: bool = False, remember: tuple | None = None,
+         radius: float = KHEPERA.radius):
     """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
-    beyond the goal) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives forward, ``z[1]`` while it reverses —
-    and fuse (Eq. 4.11)."""
+    beyond the goal; with ``remember`` = (merge, memory_s, see_through), the remembered points too,
+    :func:`~robots.controllers.discrete.as_readings`) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives
+    forward, ``z[1]`` while it reverses — and fuse (Eq. 4.11)."""
     refresh = (obs.t >= state.due - 1e-6) | (obs.target_id != state.target_id)
     if on_sensed:
         refresh = refresh | jnp.any(jnp.isfinite(obs.ir))
     c_p = jnp.where(refresh, indirect.control(ekm, obs.target, cfg)[0], state.c_p)
     due = jnp.where(refresh, obs.t + period, state.due)
     reversing = (c_p[0] + c_p[1] < 0.0).astype(jnp.int32)  # z[1]: the vehicle facing backward (``facing``)
-    c_o = avoid(z[reversing], proximity(readings_to_the_goal(obs) if nearer else obs.ir, sensors))
+    readings, memory = readings_to_the_goal(obs) if nearer else obs.ir, state.memory
+    if remember is not None:
+        merge, memory_s, through, within = remember
+        angles = jnp.asarray(sensors.angles, jnp.float32)
+        memory, points, valid = sense(memory, obs, angles, radius=radius, range_m=sensors.range_m, merge=merge,
+                                      memory_s=memory_s, through=through, nearer=nearer)
+        readings = as_readings(points, valid, angles, jnp.asarray(readings, jnp.float32), radius=radius, within=within)
+    c_o = avoid(z[reversing], proximity(readings, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
-    return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32)), c
+    return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32), memory), c
 
 
 def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPERA, spec: str = "fusion") -> Controller:
@@ -132,5 +173,8 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
             if params.facing == "travel" else ahead)
     z = jnp.asarray(np.stack([ahead, back]))
     run = partial(step, ekm=ekm, z=z, cfg=cfg, beta=params.beta, period=params.period, sensors=sensors,
-                  on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer")
-    return Controller(name="fusion", spec=spec, sensors=sensors, init=init, step=run, params=params, robot=robot)
+                  on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer",
+                  remember=(params.merge, params.memory_s, params.see_through, params.within) if params.remember else None,
+                  radius=robot.radius)
+    return Controller(name="fusion", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
+                      robot=robot)

@@ -102,3 +102,20 @@ def test_fusion_back_cone_is_in_degrees_and_bounded(signed_map):
     target = (np.radians(170.0), 0.1)
     (_, c_narrow), (_, c_wide) = (ctl.step(ctl.init(), observation(ir, target=target)) for ctl in (narrow, wide))
     assert np.sum(c_wide) > np.sum(c_narrow)  # braked by the side sensor only within the wide cone
+
+
+def test_fusion_remembers_a_wall_end_its_sensors_have_lost_and_answers_it_with_the_nearest_sensors_weights(signed_map):
+    """Tick 1: the 45 deg sensor reads 1.5 cm. Tick 2: the robot has turned 25 deg right on the spot and no sensor
+    reads anything: the remembered point is at 70 deg, in the blind angle between the 45 and 85 deg sensors,
+    nearest the 85 deg one (a side sensor: +same 0.4 to its own motor, +same/2 0.2 to the other). By hand: u = 1 -
+    0.015 / 0.05 = 0.7, Z u = (0.28, 0.14), times 1 - beta = 0.15: (0.042, 0.021) m/s more than without the
+    memory, which answers nothing."""
+    ir = np.full(8, np.inf)
+    ir[1] = 0.015
+    sends = {}
+    for remember in (True, False):
+        ctl = fusion_controller(signed_map, remember=remember)
+        state, _ = ctl.step(ctl.init(), observation(ir, pose=(0.5, 0.5, 0.0)))
+        _, sends[remember] = ctl.step(state, observation(np.full(8, np.inf), t=0.128,
+                                                         pose=(0.5, 0.5, np.radians(-25.0))))
+    np.testing.assert_allclose(np.asarray(sends[True]) - np.asarray(sends[False]), [0.042, 0.021], atol=1e-4)
