@@ -58,6 +58,8 @@ class Spec:
 
 
 def _show(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"  # as the command line spells them (:func:`_typed` reads either)
     return repr(value) if isinstance(value, float) and not value.is_integer() else (
         f"{value:g}" if isinstance(value, float) else str(value))
 

@@ -14,6 +14,8 @@ def test_architecture_specs_parse_parameters_and_spell_them_all():
     assert specs[2].params.form == "thesis" and specs[2].params.commit is False
     assert specs[0].label == "fusion:sensors=long,beta=0.6" and specs[1].label == "fields"
     assert str(parse_architecture(str(specs[0]))) == str(specs[0])  # the full spelling parses back
+    assert specs[2].label == "fields:form=thesis,commit=false"  # a switch as the command line spells it
+    assert "commit=false" in str(specs[2]) and "commit=true" in str(specs[1])
 
 
 @pytest.mark.parametrize("text, message", [
