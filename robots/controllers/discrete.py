@@ -12,7 +12,8 @@ possible responses"; here every such response is a pair (v, ω) — forward spee
 point of each declared moving obstacle — the long ring's rays are 30° apart, so a box corner between two of
 them is seen only when it touches the body; the memory keeps what a ray saw a moment ago. Brooks's robots
 kept no such map ("the world is its own best model"); here every architecture of a comparison sees through
-the same memory, so the comparison weighs how they *respond*, not what they see.
+the same memory, so the comparison weighs how they *respond*, not what they see. Command fusion's Braitenberg
+vehicle reads the same memory through its sensors' sectors (:func:`as_readings`).
 """
 
 from __future__ import annotations

@@ -94,8 +94,8 @@ class FusionParams:
     remember: bool = field(default=True, metadata={
         "help": "each sensor also reads the remembered IR points (and declared movers) in its sector (an extension; "
                 "false: its own return alone, ch. 4.4)"})
-    within: float = field(default=0.02, metadata={"help": "remember=true: m from the body within which a remembered point "
-                                                         "is read"})
+    within: float = field(default=0.02, metadata={
+        "help": "remember=true: m from the body within which a remembered point is read"})
     memory_points: int = field(default=128, metadata={"help": "remember=true: IR obstacle points remembered at most"})
     memory_s: float = field(default=30.0, metadata={"help": "remember=true: s an IR obstacle point is remembered"})
     merge: float = field(default=0.01, metadata={"help": "remember=true: m within which a hit refreshes a remembered "
@@ -143,7 +143,7 @@ def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: 
          sensors: SensorSet, on_sensed: bool = False, nearer: bool = False, remember: tuple | None = None,
          radius: float = KHEPERA.radius):
     """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
-    beyond the goal; with ``remember`` = (merge, memory_s, see_through), the remembered points too,
+    beyond the goal; with ``remember`` = (merge, memory_s, see_through, within), the remembered points too,
     :func:`~robots.controllers.discrete.as_readings`) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives
     forward, ``z[1]`` while it reverses — and fuse (Eq. 4.11)."""
     refresh = (obs.t >= state.due - 1e-6) | (obs.target_id != state.target_id)
@@ -174,7 +174,8 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
     z = jnp.asarray(np.stack([ahead, back]))
     run = partial(step, ekm=ekm, z=z, cfg=cfg, beta=params.beta, period=params.period, sensors=sensors,
                   on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer",
-                  remember=(params.merge, params.memory_s, params.see_through, params.within) if params.remember else None,
+                  remember=((params.merge, params.memory_s, params.see_through, params.within) if params.remember
+                            else None),
                   radius=robot.radius)
     return Controller(name="fusion", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
                       robot=robot)
