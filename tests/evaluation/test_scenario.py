@@ -325,10 +325,12 @@ def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it
 # parameters per architecture, the defaults, for every world; the runs are set up as the thesis's were —
 # its greedy checkpoints (ch. 3.2.3) and no recovery, so the trap monitor ends a trapped run.
 
-# Command fusion with ch. 4.4's Z, whose forward-facing sensors are always the robot's front (the default turns Z
-# round while the map reverses, an extension measured on the generated suite: docs/reproduce/architectures.md).
+# Command fusion with ch. 4.4's vehicle: Z's forward-facing sensors always the robot's front, reading its sensors
+# alone (the defaults turn Z round while the map reverses and read the memory near the body, extensions measured on
+# the generated suite: docs/reproduce/architectures.md).
 FUSION = "fusion:facing=front,remember=false"
-FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front,remember=false"  # ch. 6.2.2: 12 long-range sensors, both at 0.128 s
+# ch. 6.2.2: 12 long-range sensors, both modules at 0.128 s
+FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front,remember=false"
 THESIS = ScenarioConfig(checkpoints="thesis", recover=False)
 
 

@@ -3,8 +3,8 @@ entry-point group): listed, spelled NAME:k=v and checked as the built-in ones, r
 ``ekm compare`` — the example package ``examples/wander`` through its entry point."""
 
 import json
-import re
 import os
+import re
 import subprocess
 import sys
 from dataclasses import dataclass, field
