@@ -113,20 +113,24 @@ def as_readings(points, valid, angles, readings, *, radius: float, within: float
     return jnp.minimum(jnp.where(jnp.isfinite(readings), readings, jnp.inf), remembered)
 
 
-def way_out(obs, radius: float, within: float):
-    """The declared mover closing on the robot within ``within`` (body to body), if any, and the way out of its
-    line: (whether one does, unit world direction ``(2,)`` across the nearest such mover's line on the robot's
-    side — its left when the robot is on the line)."""
+def way_out(obs, radius: float, within: float, lane: float = float("inf")):
+    """The declared mover closing on the robot within ``within`` (body to body) whose line passes within ``lane``
+    of the body (its track, straight on, meets the robot where it stands), if any, and the way out of its line:
+    (whether one does, unit world direction ``(2,)`` across the nearest such mover's line on the robot's side —
+    its left when the robot is on the line). Why ``lane``: a mover closing on a line that passes the body clear
+    (one circling the robot's goal) is no threat, and running from it carried the robot into its next pass."""
     markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
     if markers.shape[0] == 0:
         return jnp.bool_(False), jnp.zeros(2, jnp.float32)
     pose = jnp.asarray(obs.pose, jnp.float32)
     rel = pose[None, :2] - markers[:, :2]  # from each mover to the robot
     dist = jnp.sqrt(jnp.sum(jnp.square(rel), axis=1))
+    u = markers[:, 2:4] / jnp.maximum(jnp.linalg.norm(markers[:, 2:4], axis=1, keepdims=True), 1e-9)
+    across = rel - jnp.sum(rel * u, axis=1, keepdims=True) * u  # from each mover's line to the robot
+    beside = jnp.linalg.norm(across, axis=1) - markers[:, 4] - radius
     closing = jnp.sum(rel * markers[:, 2:4], axis=1) > 0.0
-    threat = (dist - markers[:, 4] - radius < within) & closing
+    threat = (dist - markers[:, 4] - radius < within) & closing & (beside < lane)
     nearest = jnp.argmin(jnp.where(threat, dist, jnp.inf))
-    u = markers[nearest, 2:4] / jnp.maximum(jnp.linalg.norm(markers[nearest, 2:4]), 1e-9)
-    out = rel[nearest] - jnp.dot(rel[nearest], u) * u
-    out = jnp.where(jnp.linalg.norm(out) < 1e-6, jnp.stack([-u[1], u[0]]), out)
+    on_line = jnp.linalg.norm(across[nearest]) < 1e-6
+    out = jnp.where(on_line, jnp.stack([-u[nearest, 1], u[nearest, 0]]), across[nearest])
     return jnp.any(threat), out / jnp.maximum(jnp.linalg.norm(out), 1e-9)

@@ -24,8 +24,10 @@ obstacle points, this tick's IR hits and those remembered (:func:`~robots.contro
 0. **avoid**: *runaway* — a sensed point in the corridor the body sweeps within ``near`` ahead
    (:func:`~robots.controllers.discrete.in_the_way`, half-width body radius + ``margin``) turns the robot
    on the spot away from the side that senses more (``spin-right`` on a tie); a declared mover closing on
-   the robot within ``flee`` takes precedence: the robot gets out of the mover's line (``cruise``, ``back`` or
-   a spin towards the way out, :func:`flee`); *collide* — a point in that corridor within ``halt``
+   the robot within ``flee`` on a line that meets the body (within ``flee_lane`` of it) takes precedence: the
+   robot gets out of the mover's line (``cruise``, ``back`` or a spin towards the way out, :func:`flee`) — and
+   this runaway suppresses back out too (an extension, issue 35: backing out, the robot backed into the line
+   of a mover circling its goal); *collide* — a point in that corridor within ``halt``
    **inhibits** forward motion: whatever response reaches the wheels loses its forward speed (Brooks's
    collide → halt). Go-to-checkpoint **suppresses** runaway's reach (an input of the layer below, as
    Brooks's wander suppresses avoid's heading) to what lies before the checkpoint — what is beyond it is no
@@ -43,8 +45,8 @@ obstacle points, this tick's IR hits and those remembered (:func:`~robots.contro
    something is right behind), then ``spin`` away from the side that senses more for ``turn_s``.
 
 Avoid sits above go-to-checkpoint in the suppression chain (as avoiding sits above homing in Mataric's
-robot): ``out = backout ▷ avoid ▷ goto ▷ wander``, with ``a ▷ b`` = a's response when a speaks, else b's
-(suppression), then the collide inhibition. Exactly one behavioural rule drives at any time (Arkin §4.3.4).
+robot): ``out = flee ▷ backout ▷ avoid ▷ goto ▷ wander``, with ``a ▷ b`` = a's response when a speaks, else
+b's (suppression), then the collide inhibition. Exactly one behavioural rule drives at any time (Arkin §4.3.4).
 
 **Randomness and purity**: wander's PRNG key is in the state, seeded from ``seed``, with the robot's pose
 folded in at each draw, as the motor schemas' noise (:mod:`~robots.controllers.schema`).
@@ -94,6 +96,8 @@ class SubsumptionParams:
                                                            "half-width"})
     flee: float = field(default=0.08, metadata={"help": "avoid: m between the bodies within which a declared "
                                                         "mover closing on the robot makes it get out of its line"})
+    flee_lane: float = field(default=0.012, metadata={"help": "avoid: m beside a closing mover's line within which "
+                                                              "the body is in its way (farther, it passes clear)"})
     halt: float = field(default=0.01, metadata={"help": "avoid (collide): m ahead within which forward motion is "
                                                         "inhibited"})
     spin_above: float = field(default=0.6, metadata={"help": "goto: rad off the checkpoint above which it spins"})
@@ -125,8 +129,8 @@ class SubsumptionParams:
                               "extension)")
 
     def __post_init__(self):
-        for name in ("cruise", "slow", "creep", "arc_speed", "arc_turn", "spin", "back", "near", "flee", "halt",
-                     "spin_above", "straight_within", "fine", "slow_within", "creep_within", "stop_within",
+        for name in ("cruise", "slow", "creep", "arc_speed", "arc_turn", "spin", "back", "near", "flee", "flee_lane",
+                     "halt", "spin_above", "straight_within", "fine", "slow_within", "creep_within", "stop_within",
                      "patience", "progress", "wander_s", "persistence", "back_s", "turn_s", "memory_s", "merge",
                      "see_through"):
             if not getattr(self, name) > 0:
@@ -181,9 +185,9 @@ class Tick(NamedTuple):
 @cache
 def init(p: SubsumptionParams) -> SubsumptionState:
     f = partial(jnp.asarray, dtype=jnp.float32)
-    return SubsumptionState(mem.empty(p.memory_points), jax.random.PRNGKey(p.seed), jnp.int32(CRUISE), f(-jnp.inf), jnp.int32(-1), f(jnp.inf),
-                            f(0.0), f(-jnp.inf), jnp.bool_(False), jnp.int32(0), f(-jnp.inf), f(-jnp.inf),
-                            jnp.int32(SPIN_RIGHT))
+    return SubsumptionState(mem.empty(p.memory_points), jax.random.PRNGKey(p.seed), jnp.int32(CRUISE), f(-jnp.inf),
+                            jnp.int32(-1), f(jnp.inf), f(0.0), f(-jnp.inf), jnp.bool_(False), jnp.int32(0),
+                            f(-jnp.inf), f(-jnp.inf), jnp.int32(SPIN_RIGHT))
 
 
 def away(points, seen):
@@ -206,7 +210,7 @@ def flee(obs: Observation, points, seen, p: SubsumptionParams, radius: float):
     mover closing on it within ``flee`` (body to body, :func:`~robots.controllers.discrete.way_out`) — ``cruise``
     when the way out lies within 45° of its heading, ``back`` when within 45° of straight behind (and nothing is
     there), else the spin towards it."""
-    threat, out = way_out(obs, radius, p.flee)
+    threat, out = way_out(obs, radius, p.flee, p.flee_lane)
     phi = wrap(jnp.arctan2(out[1], out[0]) - jnp.asarray(obs.pose, jnp.float32)[2])
     response = jnp.where(jnp.abs(phi) < jnp.pi / 4, CRUISE,
                          jnp.where((jnp.abs(phi) > 3 * jnp.pi / 4) & ~behind(points, seen, p, radius), BACK,
@@ -277,8 +281,8 @@ def layers(state: SubsumptionState, obs: Observation, angles, p: SubsumptionPara
     backout = jnp.where(t < back_until, jnp.where(behind(points, seen, p, radius), STOP, BACK),
                         jnp.where(t < turn_until, turn, -1))
 
-    # suppression: backout ▷ avoid ▷ goto ▷ wander
-    chain = ((backout, 3), (run_away, 0), (go, 2))
+    # suppression: flee ▷ backout ▷ avoid ▷ goto ▷ wander (the runaway from a mover above back out)
+    chain = ((escape, 0), (backout, 3), (run_away, 0), (go, 2))
     response, layer = wander, jnp.int32(1)
     for out, index in reversed(chain):
         response = jnp.where(out >= 0, out, response)

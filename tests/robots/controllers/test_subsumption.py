@@ -95,7 +95,8 @@ def test_progress_resets_the_count_of_avoid_episodes():
     ((0.46, 0.47, 0.0, 0.1, 0.02), sub.CRUISE),  # from behind-right across the robot's line: drive on, out of it
     ((0.45, 0.5, 0.1, 0.0, 0.02), sub.SPIN_LEFT),  # straight from behind: the way out is its left, 90° off
     ((0.5, 0.45, 0.0, 0.1, 0.02), sub.BACK),  # straight from the right: its left is behind the robot
-    ((0.5, 0.45, 0.0, -0.1, 0.02), -1)])  # moving away: no threat
+    ((0.5, 0.45, 0.0, -0.1, 0.02), -1),  # moving away: no threat
+    ((0.44, 0.45, 0.0, 0.1, 0.02), -1)])  # closing, but its line passes 6 - 2 - 2.5 = 1.5 cm beside the body (> 1.2)
 def test_runaway_gets_out_of_the_line_of_a_closing_mover(mover, response):
     _, t = tick(long_ring(), markers=[mover])
     assert int(t.avoid) == response
@@ -110,3 +111,15 @@ def test_runaway_starts_while_a_closing_mover_is_within_flee_of_the_body():
     assert P.flee == 0.08 and int(t.avoid) == sub.BACK
     _, t = tick(long_ring(), markers=[mover], p=sub.SubsumptionParams(flee=0.04))
     assert int(t.avoid) == -1
+
+
+def test_a_closing_mover_suppresses_back_out_and_the_robot_gets_out_of_its_line():
+    """Three avoid episodes without progress start back out (``back``); a mover then closing from straight behind
+    (its line through the robot's centre) makes the runaway speak above it: the way out is the robot's left, 90°
+    off, so ``spin-left`` — backing would drive into the mover's line."""
+    state = sub.init(P)
+    for k, on in enumerate([False, True, False, True, False, True]):
+        state, t = tick(long_ring(s1=0.02) if on else long_ring(), state=state, t=k * 0.128)
+    assert int(t.backout) == sub.BACK and int(t.response) == sub.BACK
+    _, t = tick(long_ring(), state=state, t=6 * 0.128, markers=[(0.42, 0.5, 0.1, 0.0, 0.02)])
+    assert int(t.backout) == sub.BACK and int(t.layer) == 0 and int(t.response) == sub.SPIN_LEFT
