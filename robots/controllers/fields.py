@@ -158,6 +158,9 @@ class FieldParams:
                 "still obstacle) less guard_margin, so that a wall it already runs beside does not stop it"})
     guard_margin: float = field(default=0.003, metadata={"help": "form=extended, guard_room: m taken off the room the "
                                                                  "robot has now for the guard's clearance"})
+    guard_reads: bool = field(default=True, metadata={
+        "help": "form=extended: the guard counts this tick's IR returns as well as the remembered points (a return "
+                "within merge of a remembered point refreshes it where it was, up to merge farther than the wall)"})
 
     def __post_init__(self):
         for name in ("gamma_alpha", "gamma_d", "sigma_a", "delta_alpha", "sigma_b", "tau", "memory_s", "merge",
@@ -430,7 +433,7 @@ def step(state: FieldState, obs: Observation, ekm, angles, *, cfg: EKMConfig, p:
     if p.form == "extended" and (p.guard_s > 0 or p.escape_s > 0):
         still = jnp.isfinite(state.memory.seen) & ~mem.near_movers(state.memory.points, obs.markers)
         if p.guard_s > 0:
-            c = guard(c, mem.egocentric(state.memory, obs.pose, radius=radius)[0], still, radius, p)
+            c = guard(c, *guard_inputs(state.memory, still, obs, angles, radius, p), radius, p)
         if p.escape_s > 0:
             c = out_of_the_way(c, state.memory.points, still, obs, radius, max_speed, p)
     return state._replace(s=f.s.astype(jnp.int32), k=k.astype(jnp.int32)), c
@@ -453,6 +456,20 @@ def movers_near(obs: Observation, radius: float, gap: float, track: float | None
     closing = dx * vx + dy * vy < 0
     nearest = jnp.abs(dx * vy - dy * vx) / jnp.maximum(jnp.hypot(vx, vy), 1e-9) - r - radius
     return jnp.any((d < gap) & (jnp.where(closing, nearest, d) < track))
+
+
+def guard_inputs(memory: mem.Memory, still, obs: Observation, angles, radius: float, p: FieldParams):
+    """What the guard counts: the remembered points that are ``still`` ``(K,)`` as (α, d) ``(K, 2)`` and, with
+    ``guard_reads``, this tick's IR returns ``(m, 2)`` after them (those on a declared mover left to its marker).
+    Why the returns: a return within ``merge`` of a remembered point refreshes it where it was, so the memory can
+    hold a wall up to ``merge`` farther than it is — traced where the robot backed at full speed into a corridor's
+    corner its IR read at 0 mm and its memory at 6 mm (issue 35)."""
+    u_obs = mem.egocentric(memory, obs.pose, radius=radius)[0]
+    if not p.guard_reads:
+        return u_obs, still
+    markers = jnp.asarray(obs.markers, jnp.float32).reshape(-1, 5)
+    u_ir, seen = obstacle_inputs(mem.off_movers(obs.pose, obs.ir, angles, markers, radius=radius), angles)
+    return jnp.concatenate([u_obs, u_ir]), jnp.concatenate([still, seen])
 
 
 def guard(c, u_obs, valid, radius: float, p: FieldParams):

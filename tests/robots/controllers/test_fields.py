@@ -278,3 +278,27 @@ def test_the_guard_lets_the_robot_run_beside_a_wall_it_is_already_nearer_than_th
     u = jnp.asarray([[math.atan2(y, x), math.hypot(x, y) - 0.025]], jnp.float32)
     c = fields.guard(jnp.asarray([0.10, 0.10], jnp.float32), u, jnp.asarray([True]), 0.025, p)
     np.testing.assert_allclose(np.asarray(c), expected, atol=2e-6)
+
+
+@pytest.mark.parametrize("guard_reads, limit", [(True, 0.034), (False, 0.05)])
+def test_the_guard_counts_this_ticks_return_where_the_memory_holds_the_wall_farther(guard_reads, limit):
+    """By hand, R = 2.5 cm, the long ring's sensor 0 straight ahead. Tick 1 reads a wall 3 cm ahead of the body:
+    remembered there. Tick 2 reads it 2.2 cm ahead: 8 mm from the remembered point, within merge (1 cm), which
+    refreshes that point where it was. The guard holds the forward speed to (d − clearance / 2) / guard_s: with
+    this tick's return counted (0.022 − 0.005) / 0.5 = 0.034 m/s, from the memory alone (0.03 − 0.005) / 0.5 =
+    0.05 m/s; the command (0.10, 0.14) keeps its turn, ±0.02."""
+    p = FieldParams(guard_reads=guard_reads)
+    angles = jnp.asarray(LONG_RANGE.angles, jnp.float32)
+    memory = fields.init(p).memory
+    ir = np.full(12, np.inf)
+    for t, reading in [(0.0, 0.03), (0.128, 0.022)]:
+        ir[0] = reading
+        obs = observation(ir, t=t)
+        memory = fields.mem.update(memory, obs.pose, jnp.asarray(obs.ir), angles, obs.t, radius=0.025,
+                                   range_m=LONG_RANGE.range_m, merge=p.merge, forget_after=p.memory_s,
+                                   through=p.see_through)
+    still = jnp.isfinite(memory.seen)
+    assert int(jnp.sum(still)) == 1  # one point, refreshed where tick 1 put it
+    u, counts = fields.guard_inputs(memory, still, obs, angles, 0.025, p)
+    c = fields.guard(jnp.asarray([0.10, 0.14], jnp.float32), u, counts, 0.025, p)
+    np.testing.assert_allclose(np.asarray(c), [limit - 0.02, limit + 0.02], atol=2e-6)
