@@ -76,12 +76,10 @@ class DamnParams:
     avoid_weight: float = field(default=3.0, metadata={"help": "weight of avoid's votes"})
     goal_weight: float = field(default=1.0, metadata={"help": "weight of go-to-checkpoint's votes"})
     keep_weight: float = field(default=0.2, metadata={"help": "weight of keep-heading's votes"})
-    memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
-    memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
-    merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
-    see_through: float = field(default=0.005, metadata={
-        "help": "m from a ray within which a remembered point it passes, short of its hit, is forgotten (the "
-                "points' radius, merge / 2, as the fields')"})
+    memory_s: float = mem.option("memory_s", 30.0)
+    memory_points: int = mem.option("memory_points", 128)
+    merge: float = mem.option("merge", 0.01)
+    see_through: float = mem.option("see_through", 0.005, why="the points' radius, merge / 2, as the fields'")
     avoid: str = avoid_option("avoid: all, or nearer (the way to the checkpoint looks only as far as the checkpoint, "
                               "and at the goal no point beyond it counts; an extension)")
 

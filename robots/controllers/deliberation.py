@@ -122,12 +122,10 @@ class DeliberationParams:
     wait_within: float = field(default=0.1, metadata={"help": "wait: m from the body surface of a mover in the way"})
     patience: float = field(default=4.0, metadata={"help": "wait: s after which its bid has fallen to 0"})
     stability: float = field(default=1.0, metadata={"help": "bid added to the ruling behaviour's"})
-    memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
-    memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
-    merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
-    see_through: float = field(default=0.01, metadata={
-        "help": "m from a ray within which a remembered point it passes, short of its hit, is forgotten (merge; 5 mm "
-                "lost more worlds than it gained)"})
+    memory_s: float = mem.option("memory_s", 30.0)
+    memory_points: int = mem.option("memory_points", 128)
+    merge: float = mem.option("merge", 0.01)
+    see_through: float = mem.option("see_through", 0.01, why="merge; 5 mm lost more worlds than it gained")
     avoid: str = avoid_option("which remembered points it avoids: all or nearer (at the goal, none beyond it; an "
                               "extension)")
 

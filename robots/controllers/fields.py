@@ -114,13 +114,11 @@ class FieldParams:
                                                               "form=thesis"})
     sigma_b: float = field(default=0.15, metadata={"help": "σ_b of the obstacle field (Eq. 5.6)"})
     tau: float = field(default=0.005, metadata={"help": "τ of δ_d (Eq. 5.6), m"})
-    memory_s: float = field(default=60.0, metadata={"help": "form=extended: s an obstacle point is remembered"})
-    memory_points: int = field(default=256, metadata={"help": "form=extended: obstacle points remembered at most"})
-    merge: float = field(default=0.01, metadata={"help": "form=extended: m within which a hit refreshes a "
-                                                         "remembered point"})
-    see_through: float = field(default=0.005, metadata={
-        "help": "form=extended: m from a ray within which a remembered point it passes, short of its hit, is forgotten "
-                "(the points' radius, merge / 2; it was merge, which forgot a wall's end beside a ray that missed it)"})
+    memory_s: float = mem.option("memory_s", 60.0, "form=extended")
+    memory_points: int = mem.option("memory_points", 256, "form=extended")
+    merge: float = mem.option("merge", 0.01, "form=extended")
+    see_through: float = mem.option("see_through", 0.005, "form=extended", "the points' radius, merge / 2; it was "
+                                    "merge, which forgot a wall's end beside a ray that missed it")
     clearance: float = field(default=0.01, metadata={"help": "form=extended: m kept between the body and a "
                                                              "remembered obstacle"})
     commit: bool = field(default=True, metadata={"help": "form=extended: keep to one side of an obstacle until "
@@ -462,8 +460,8 @@ def guard_inputs(memory: mem.Memory, still, obs: Observation, angles, radius: fl
     """What the guard counts: the remembered points that are ``still`` ``(K,)`` as (α, d) ``(K, 2)`` and, with
     ``guard_reads``, this tick's IR returns ``(m, 2)`` after them (those on a declared mover left to its marker).
     Why the returns: a return within ``merge`` of a remembered point refreshes it where it was, so the memory can
-    hold a wall up to ``merge`` farther than it is — traced where the robot backed at full speed into a corridor's
-    corner its IR read at 0 mm and its memory at 6 mm (issue 35)."""
+    hold a wall up to ``merge`` farther than it is, and the robot backing past a corner hit it (issue 35; traced in
+    ``docs/reproduce/every-kind.md``)."""
     u_obs = mem.egocentric(memory, obs.pose, radius=radius)[0]
     if not p.guard_reads:
         return u_obs, still

@@ -96,13 +96,10 @@ class FusionParams:
                 "false: its own return alone, ch. 4.4)"})
     within: float = field(default=0.02, metadata={
         "help": "remember=true: m from the body within which a remembered point is read"})
-    memory_points: int = field(default=128, metadata={"help": "remember=true: IR obstacle points remembered at most"})
-    memory_s: float = field(default=30.0, metadata={"help": "remember=true: s an IR obstacle point is remembered"})
-    merge: float = field(default=0.01, metadata={"help": "remember=true: m within which a hit refreshes a remembered "
-                                                         "point"})
-    see_through: float = field(default=0.005, metadata={
-        "help": "remember=true: m within which a ray passing a remembered point forgets it (the points' radius, "
-                "as Samba's)"})
+    memory_points: int = mem.option("memory_points", 128, "remember=true")
+    memory_s: float = mem.option("memory_s", 30.0, "remember=true")
+    merge: float = mem.option("merge", 0.01, "remember=true")
+    see_through: float = mem.option("see_through", 0.005, "remember=true", "the points' radius, as Samba's")
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:

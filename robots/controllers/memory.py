@@ -17,6 +17,7 @@ Pure functions over a :class:`Memory` pytree; ``jnp`` only.
 
 from __future__ import annotations
 
+from dataclasses import field
 from typing import NamedTuple
 
 import jax
@@ -36,6 +37,20 @@ class Memory(NamedTuple):
     seen: jax.Array
     slot: jax.Array
     moving: jax.Array
+
+
+#: What each of the memory's parameters means, for the architectures that remember (:func:`option`).
+MEANING = {"memory_s": "s an IR obstacle point is remembered",
+           "memory_points": "IR obstacle points remembered at most",
+           "merge": "m within which a hit refreshes a remembered point",
+           "see_through": "m from a ray within which a remembered point it passes, short of its hit, is forgotten"}
+
+
+def option(name: str, default, when: str = "", why: str = ""):
+    """The memory parameter ``name`` (a key of :data:`MEANING`) of an architecture's parameters (a dataclass field):
+    ``default``, and the help text — prefixed by ``when`` it applies, followed by ``why`` its default."""
+    return field(default=default, metadata={"help": (f"{when}: " if when else "") + MEANING[name]
+                                            + (f" ({why})" if why else "")})
 
 
 def empty(size: int) -> Memory:

@@ -99,12 +99,10 @@ class SambaParams:
                                                          "action that closes on the task marker fastest"})
     propagation: float = field(default=0.15, metadata={"help": "goto=msa: propagation factor p of Eq. 3.1"})
     passes: int = field(default=8, metadata={"help": "goto=msa: passes of Eq. 3.1"})
-    memory_points: int = field(default=128, metadata={"help": "IR obstacle points remembered at most"})
-    memory_s: float = field(default=30.0, metadata={"help": "s an IR obstacle point is remembered"})
-    merge: float = field(default=0.01, metadata={"help": "m within which a hit refreshes a remembered point"})
-    see_through: float = field(default=0.005, metadata={
-        "help": "m from a ray within which a remembered point it passes, short of its hit, is forgotten (the "
-                "points' radius, merge / 2, as the fields')"})
+    memory_points: int = mem.option("memory_points", 128)
+    memory_s: float = mem.option("memory_s", 30.0)
+    merge: float = mem.option("merge", 0.01)
+    see_through: float = mem.option("see_through", 0.005, why="the points' radius, merge / 2, as the fields'")
     squeeze: float = field(default=0.003, metadata={"help": "m added to the robot's radius instead of clearance once "
                                                            "clearance has left no action for squeeze_s (>= clearance: "
                                                            "never)"})
