@@ -16,7 +16,9 @@ tick. Here one batch holds one architecture's runs over many (world, seed) pairs
    after one period of a zero command;
 4. drive one period (:func:`robots.jaxworld.engine.step`); a sub-step within 5 mm of the checkpoint reaches it;
 5. the trap monitor (:mod:`evaluation.jaxmonitor`, :class:`~evaluation.monitor.TrapMonitor`'s rule): trapped, the
-   run ends — or, with recovery, **waits** for the host.
+   run ends — or, with recovery, **waits** for the host; and, with recovery, a checkpoint the IR shows blocked
+   (:func:`evaluation.scenario.blocked_checkpoint`, :func:`blocked`) **waits** for the host's replan round what the
+   robot sensed.
 
 The runs go through in blocks of :data:`BLOCK` (:func:`advance`), a block with no run left skipped. The planner
 stays on the host (the imperative shell, :func:`run_batch`): plans are made before the batch; the scan runs in
@@ -55,17 +57,19 @@ import jax.numpy as jnp
 import numpy as np
 
 from evaluation import jaxmonitor
-from evaluation.scenario import (PlanChange, RunRecord, ScenarioConfig, first_plan, mover_radius, recovery,
-                                 replan_from, split_step, time_limit_for, turn_on_the_spot)
+from evaluation.scenario import (DOUBT, MOVER_MARGIN, PlanChange, RunRecord, ScenarioConfig, explained_within, first_plan,
+                                 mover_radius, recovery, replan_from, split_step, time_limit_for, turn_on_the_spot)
 from robots import kinematics
-from robots.controllers.base import Observation
+from robots.controllers.base import Observation, hit_points
 from robots.jaxworld import engine, moving
+from robots.jaxworld.collide import gaps
 from robots.jaxworld.scene import Paths, Scene, has_dynamics, paths_of, scene_of, shape_of, sizes, stack
 from robots.jaxworld.task import sees, sees_next, sight_need
 from robots.params import RobotParams, SensorSet
 
-#: A run's status: ticking, waiting for the host to replan (recovery, or a known event), or ended — and how.
-RUNNING, WAITING, EVENT, ARRIVED, TRAPPED, TIMEOUT, NO_ROUTE, CAUGHT = 0, 1, 2, 3, 4, 5, 6, 7
+#: A run's status: ticking, waiting for the host to replan (recovery, a known event, a blocked checkpoint), or ended
+#: — and how (every status from ARRIVED on).
+RUNNING, WAITING, EVENT, BLOCKED, ARRIVED, TRAPPED, TIMEOUT, NO_ROUTE, CAUGHT = 0, 1, 2, 3, 4, 5, 6, 7, 8
 ENDED = {ARRIVED: "stopped at the goal", TRAPPED: "trapped", TIMEOUT: "time limit",
          NO_ROUTE: "no route after a change of the map", CAUGHT: "caught the moving goal"}
 
@@ -129,7 +133,8 @@ class RunState(NamedTuple):
     (``turn_until``, s), the trap monitor, ``status`` (:data:`RUNNING` …), checkpoints ``passed`` (the goal too),
     the time (s) of the tick it stopped at the goal (``stop_t``) and of its last tick (``last_t``: a known event
     since then replans), and the first and last checkpoint the look ahead took it past (``looked_past`` ``(2,)``
-    int32, empty when first > last: :class:`~evaluation.scenario.Course`'s)."""
+    int32, empty when first > last: :class:`~evaluation.scenario.Course`'s) and the target its blocked checkpoint found
+    no route round (``unblockable``, -1: none)."""
 
     engine: engine.EngineState
     control: Any
@@ -146,6 +151,7 @@ class RunState(NamedTuple):
     stop_t: Any
     last_t: Any
     looked_past: Any
+    unblockable: Any
 
 
 class TickOut(NamedTuple):
@@ -305,20 +311,43 @@ def tick(setup: Setup, route: Route, state: RunState, arrays, passed_to) -> tupl
     watch = ~stop & ~near & ~caught
     monitor = _where(watch, watched, monitor)
     trapped = watch & trapped
+    stuck = watch & ~final & (target_id != state.unblockable) & blocked(setup, route, pose, ir, markers, goal)
     status = jnp.where(stop, ARRIVED, jnp.where(caught, CAUGHT, jnp.where(trapped, jnp.where(route.may_recover,
-                                                                                             WAITING, TRAPPED), RUNNING)))
+                                                                                             WAITING, TRAPPED),
+                                                                          jnp.where(stuck, BLOCKED, RUNNING))))
     ticks = state.tick + 1
     status = jnp.where((status == RUNNING) & (ticks >= route.ticks), TIMEOUT, status).astype(jnp.int32)
 
     new = RunState(engine=eng, control=control, key=key, tick=ticks, index=index, target_id=target_id + near,
                    settled=inside, since=since, turn_until=turn_until, monitor=monitor, status=status,
                    passed=state.passed + passed + near + stop + caught,
-                   stop_t=jnp.where(stop, t, jnp.where(caught, caught_t, state.stop_t)), last_t=t, looked_past=past)
+                   stop_t=jnp.where(stop, t, jnp.where(caught, caught_t, state.stop_t)), last_t=t, looked_past=past,
+                   unblockable=state.unblockable)
     live = (state.status == RUNNING) & ~changed
     out = TickOut(live=live, pose=pose, ir=ir, command=command, commanded=~stop, trace=trace,
                   collisions=eng.collisions, markers=markers, goal=goal)
     held = state._replace(status=jnp.where((state.status == RUNNING) & changed, EVENT, state.status).astype(jnp.int32))
     return _where(live, new, held), out
+
+
+def blocked(setup: Setup, route: Route, pose, ir, markers, checkpoint):
+    """:func:`evaluation.scenario.blocked_checkpoint` of one run's tick: whether a still point its IR ``ir`` saw from
+    ``pose`` within ``sensed_near`` lies within the robot's radius of the ``checkpoint`` ``(2,)`` even with the reading's doubt, unexplained
+    by the planner's map ``route.sight``. False where the scenario's rules replan on no such thing (no recovery)."""
+    config, p, sensors = setup.config, setup.params, setup.sensors
+    if not (config.recover and config.blocked):
+        return jnp.bool_(False)
+    pts, seen = hit_points(pose, ir, sensors.angles, p.radius, xp=jnp)
+    if setup.dynamic:  # a point on a declared mover is the mover (:func:`evaluation.scenario.sensed_points`)
+        gap = jnp.linalg.norm(pts[:, None, :] - markers[None, :, :2], axis=-1)
+        seen = seen & ~jnp.any(gap <= markers[None, :, 4] + MOVER_MARGIN, axis=-1)
+    doubt = DOUBT * sensors.noise * jnp.where(seen, ir, 0.0)
+    seen = seen & (ir <= config.sensed_near)
+    gap = jnp.where(seen, jnp.linalg.norm(pts - checkpoint, axis=1) + doubt, jnp.inf)
+    k = jnp.argmin(gap)
+    clear = jnp.min(gaps(pts[k], route.sight)[0])
+    return (gap[k] < p.radius) & (clear > explained_within(ir[k], config.sensed_radius, sensors.noise,
+                                                             sensors.resolution_m, jnp))
 
 
 @partial(jax.jit, static_argnames=("setup", "block", "length"), donate_argnums=(3,))
@@ -494,6 +523,19 @@ def recover(run: Run, pose, t: float, config: ScenarioConfig):
     return current.checkpoints
 
 
+def unblock(run: Run, pose, t: float, config: ScenarioConfig):
+    """The pymunk runner's replan round a blocked checkpoint (:func:`evaluation.scenario.watch`) for a run whose IR
+    showed it at ``t`` with the robot at ``pose``: its checkpoints on the new plan, or None (what it sensed leaves no
+    route: the checkpoint stays)."""
+    found = recovery(run.plan, run.known, run.sensed, run.body, pose[:2], t, config, near_only=True)
+    if found is None:
+        return None
+    current, known, added = found
+    run.rec.plans.append(PlanChange(t, "blocked checkpoint", current.checkpoints.copy(), added, current.avoided))
+    run.plan, run.known, run.replans, run.map_t = current, known, run.replans + 1, t
+    return current.checkpoints
+
+
 def after_event(run: Run, pose, t: float, config: ScenarioConfig):
     """The pymunk runner's replan after a known event (:func:`evaluation.scenario.after_events`) for a run whose
     map changed by ``t``, the robot at ``pose``: its checkpoints on the new plan, or None (no route)."""
@@ -615,7 +657,8 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
                      monitor=jax.tree.map(lambda a: jnp.broadcast_to(a, (len(slots),) + a.shape), jaxmonitor.init(grid)),
                      status=jnp.asarray(np.where(ids >= 0, RUNNING, TIMEOUT), jnp.int32), passed=zeros(jnp.int32),
                      stop_t=zeros(jnp.float32), last_t=zeros(jnp.float32),
-                     looked_past=jnp.tile(jnp.array([0, -1], jnp.int32), (len(slots), 1)))
+                     looked_past=jnp.tile(jnp.array([0, -1], jnp.int32), (len(slots), 1)),
+                     unblockable=jnp.full(len(slots), -1, jnp.int32))
     arrays = joined(*arrays)
     open_ = ids >= 0
     while open_.any():
@@ -624,7 +667,7 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
         status = np.asarray(state.status)
         for k in np.flatnonzero(open_):
             _taken(slots[k], outs, k, setup)
-        waiting = np.flatnonzero(open_ & ((status == WAITING) | (status == EVENT)))
+        waiting = np.flatnonzero(open_ & ((status == WAITING) | (status == EVENT) | (status == BLOCKED)))
         if len(waiting):
             routes, state = _replans(slots, waiting, routes, state, setup)
             status = np.asarray(state.status)
@@ -643,37 +686,43 @@ def _run_group(runs: list[Run], controls: list, arrays: list, setup: Setup, on_d
 
 
 def _replans(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
-    """New plans for every run in ``waiting`` — recovery (:data:`WAITING`, :func:`recover`) or a known event
-    (:data:`EVENT`, :func:`after_event`) — into ``routes`` with their maps, the runs' states restarted on them (index
-    0, a new target, the monitor reset; after a recovery a turn to face the route) — or ended (trapped; no route)."""
+    """New plans for every run in ``waiting`` — recovery (:data:`WAITING`, :func:`recover`), a known event
+    (:data:`EVENT`, :func:`after_event`) or a blocked checkpoint (:data:`BLOCKED`, :func:`unblock`) — into ``routes``
+    with their maps, the runs' states restarted on them (index 0, a new target, the monitor reset; after a recovery or
+    a blocked checkpoint a turn to face the route) — or ended (trapped; no route), or, for a blocked checkpoint with no
+    route round it, going on as they were."""
     config = setup.config
     poses = np.asarray(state.engine.robot.pose)
     ks = np.asarray(state.engine.k)
     status = np.asarray(state.status).copy()
     new = {}
+    act = {WAITING: recover, EVENT: after_event, BLOCKED: unblock}
     for i in waiting:
         t = float(np.float32(ks[i]) * np.float32(setup.params.dt))
-        event = status[i] == EVENT
-        new[int(i)] = (t, event, (after_event if event else recover)(runs[i], poses[i], t, config))
+        new[int(i)] = (t, int(status[i]), act[int(status[i])](runs[i], poses[i], t, config))
     cps = [np.asarray(r.plan.checkpoints, np.float32) for r in runs]
     slots = max(routes.checkpoints.shape[1], _bucket(max(len(c) for c in cps)))
     routes = routes._replace(sight=_grown(routes.sight, runs, [i for i, (_, _, c) in new.items() if c is not None]),
                              checkpoints=_padded(cps, slots), last=np.array([len(c) - 1 for c in cps], np.int32))
-    index, target_id, turn_until, last_t, past = (np.asarray(a).copy() for a in (
-        state.index, state.target_id, state.turn_until, state.last_t, state.looked_past))
+    index, target_id, turn_until, last_t, past, unblockable = (np.asarray(a).copy() for a in (
+        state.index, state.target_id, state.turn_until, state.last_t, state.looked_past, state.unblockable))
     ticks = np.asarray(state.tick)
     when, at = np.zeros(len(runs), bool), np.zeros(len(runs), np.float32)
-    for i, (t, event, checkpoints) in new.items():
+    for i, (t, why, checkpoints) in new.items():
+        going_on = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
         if checkpoints is None:
-            status[i] = NO_ROUTE if event else TRAPPED
+            if why == BLOCKED:
+                unblockable[i], status[i] = target_id[i], going_on
+            else:
+                status[i] = NO_ROUTE if why == EVENT else TRAPPED
             continue
         when[i], at[i] = True, t
         index[i], target_id[i], past[i] = 0, target_id[i] + 1, (0, -1)
-        if event:
+        if why == EVENT:
             last_t[i] = t  # the tick at t runs next, on the new plan, and does not replan again
         else:
             turn_until[i] = t + config.turn_s
-        status[i] = TIMEOUT if ticks[i] >= routes.ticks[i] else RUNNING
+        status[i] = going_on
     monitor = jaxmonitor.reset(state.monitor, jnp.asarray(at), jnp.asarray(when))
     may = routes.may_recover.copy()
     for r_i, r in enumerate(runs):
@@ -681,7 +730,8 @@ def _replans(runs: list, waiting, routes: Route, state: RunState, setup: Setup):
     routes = routes._replace(may_recover=may)
     state = state._replace(status=jnp.asarray(status), index=jnp.asarray(index), target_id=jnp.asarray(target_id),
                            turn_until=jnp.asarray(turn_until, jnp.float32), last_t=jnp.asarray(last_t, jnp.float32),
-                           monitor=monitor, looked_past=jnp.asarray(past, jnp.int32))
+                           monitor=monitor, looked_past=jnp.asarray(past, jnp.int32),
+                           unblockable=jnp.asarray(unblockable, jnp.int32))
     return routes, state
 
 

@@ -24,7 +24,9 @@ robot's motor and sensor noise), the slippery-cell planner (:mod:`planner`) and 
    explain join the planner's map (:func:`recovery`, :func:`with_sensed`), the route is replanned around them
    (around the near readings alone, or none, where they close every way) from where the robot is, and the robot turns on the spot to face the new route before its architecture takes
    over again (a trap is a balance between going on and backing off; a disc turning on the spot
-   touches nothing new, and facing the new route breaks the balance).
+   touches nothing new, and facing the new route breaks the balance); with recovery, a checkpoint the IR shows no
+   robot can stand at (an unforeseen obstacle within the robot's radius of it, :func:`blocked_checkpoint`) is
+   replanned round the near readings at once, no recovery spent.
 
 The plan is :func:`planner.plan`'s with the config's checkpoint rule (``visible`` by default, ``thesis``
 for ch. 3.2.3 as written) and its cell, refined automatically where a narrow place holds no free cell.
@@ -68,6 +70,7 @@ class ScenarioConfig:
     trap_loop: float | None = 1.5  # m driven on ground visited before without coming closer: a loop (None: off)
     recover: bool = True  # on a trap, add the sensed obstacle to the map and replan (thesis 7.1.1)
     max_recoveries: int = 5  # traps recovered from before a run gives up
+    blocked: bool = True  # with recover: replan at once round a checkpoint the IR shows no robot can stand at
     sensed_radius: float = 0.005  # m: an obstacle point added to the map on recovery: a disc of the IR's τ
     sensed_near: float = 0.05  # m: where all it sensed leaves no route, recovery plans round the readings this near
     cell: float = DEFAULT_CELL  # m: the planner's bitmap cell (halved while no route exists, if ``refine``)
@@ -139,6 +142,10 @@ def time_limit_for(config: ScenarioConfig, route_m: float, top_speed: float) -> 
     return max(TIME_FLOOR_S, TIME_PER_ROUTE * route_m / top_speed)
 
 
+#: The reasons of the plans that add what the robot sensed to the planner's map (:class:`PlanChange`).
+SENSED = ("recovery", "blocked checkpoint")
+
+
 @dataclass(frozen=True)
 class PlanChange:
     """A plan the robot followed from ``t``: why it was made, its checkpoints ``(k, 2)`` (goal last), for
@@ -146,7 +153,8 @@ class PlanChange:
     lanes its route keeps off (``Plan.avoided``, :mod:`planner.lanes`)."""
 
     t: float
-    reason: str  # "start", "event" (a known change of the map, Fig. 6.5) or "recovery" (after a trap)
+    reason: str  # "start", "event" (a known change of the map, Fig. 6.5), "recovery" (after a trap) or "blocked
+    #              checkpoint" (the IR saw one the robot cannot reach); the last two add what the IR sensed (SENSED)
     checkpoints: np.ndarray
     added: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     avoided: tuple = ()
@@ -328,6 +336,7 @@ class Course:
     replans: int = 0
     recoveries: int = 0
     looked_past: tuple[int, int] = (0, -1)
+    unblockable: int = -1
     ended: str = ""
     arrived: bool = False
     trapped: bool = False
@@ -561,11 +570,13 @@ def drive(shell: Shell, course: Course, t: float, goal, command) -> tuple[Course
 
 def watch(shell: Shell, course: Course) -> Course:
     """Step 5: the trap monitor; on a trap, recovery — the sensed obstacle joins the planner's map, the route is
-    replanned round it and the robot turns to face it — or the end of the run."""
+    replanned round it and the robot turns to face it — or the end of the run; else a blocked checkpoint
+    (:func:`unblocked`)."""
     sim, config = shell.sim, shell.config
-    if not shell.monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - course.target(shell.world, sim.t))),
-                                sim.pose[:2]):
-        return course
+    trapped = shell.monitor.update(sim.t, float(np.linalg.norm(sim.pose[:2] - course.target(shell.world, sim.t))),
+                                   sim.pose[:2])
+    if not trapped:
+        return unblocked(shell, course)
     shell.rec.trap_log.append((sim.t, *sim.pose[:2]))
     if not config.recover or course.recoveries >= config.max_recoveries:
         return replace(course, ended="trapped", trapped=True)
@@ -575,6 +586,24 @@ def watch(shell: Shell, course: Course) -> Course:
         return replace(course, ended="trapped (no route around the sensed obstacle)", trapped=True)
     current, known, added = found
     return replace(replanned(shell, course, sim.t, "recovery", known, added, current),
+                   turn_until=sim.t + config.turn_s)
+
+
+def unblocked(shell: Shell, course: Course) -> Course:
+    """With recovery, a checkpoint (not the goal) this tick's IR shows blocked (:func:`blocked_checkpoint`): the course
+    on a plan round the near readings (:func:`recovery` with ``near_only``), the robot turned to face it, no recovery
+    spent; where they leave no route, the checkpoint stays (``unblockable``) and the trap monitor watches."""
+    sim, config = shell.sim, shell.config
+    this_tick = shell.sensed[-1:] if shell.sensed and shell.sensed[-1][0] == course.last_t else []
+    if not (config.recover and config.blocked and not course.final and course.target_id != course.unblockable
+            and blocked_checkpoint(this_tick, shell.body, course.plan.checkpoints[course.index], course.sight,
+                                   config.sensed_radius, config.sensed_near)):
+        return course
+    found = recovery(course.plan, course.known, shell.sensed, shell.body, sim.pose[:2], sim.t, config, near_only=True)
+    if found is None:
+        return replace(course, unblockable=course.target_id)
+    current, known, added = found
+    return replace(replanned(shell, course, sim.t, "blocked checkpoint", known, added, current),
                    turn_until=sim.t + config.turn_s)
 
 
@@ -745,7 +774,11 @@ def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.
     return np.concatenate([pos, vel, radii[:, None]], axis=1).astype(np.float32)
 
 
-def sensed_points(sensed: list, controller: Controller, margin: float = 0.01) -> tuple[np.ndarray, np.ndarray]:
+#: m: a sensed point within a declared mover's radius plus this of where the mover was is the mover (:func:`sensed_points`).
+MOVER_MARGIN = 0.01
+
+
+def sensed_points(sensed: list, controller: Controller, margin: float = MOVER_MARGIN) -> tuple[np.ndarray, np.ndarray]:
     """Every still obstacle point the IR saw in the ``sensed`` ticks (t, pose, readings, markers), ``(n, 2)``, and
     the reading ``(n,)`` (m from the body surface) each came from. A point within a declared mover's radius +
     ``margin`` of where the mover was at that tick is the mover, not an obstacle to plan round."""
@@ -762,9 +795,11 @@ def sensed_points(sensed: list, controller: Controller, margin: float = 0.01) ->
 
 
 def recovery(previous, known: World, sensed: list, controller: Controller, position, t: float,
-             config: ScenarioConfig):
+             config: ScenarioConfig, near_only: bool = False):
     """Recovery's new plan from ``position`` round what the IR ``sensed`` (thesis 7.1.1): ``(plan, map, added
-    points)``, or None if not even the map as it was leaves a way through.
+    points)``, or None if not even the map as it was leaves a way through. With ``near_only`` (the replan round a
+    blocked checkpoint, :func:`blocked_checkpoint`): round the readings within ``config.sensed_near`` or not at all —
+    what it adds stays on the map, and a far reading's noise there would close a gap for every recovery after it.
 
     Every still point sensed joins the map (:func:`with_sensed`); where that closes every way — the readings'
     10 % noise scatters a far pillar's points across a gap a few millimetres wider than the robot — the plan is
@@ -775,8 +810,10 @@ def recovery(previous, known: World, sensed: list, controller: Controller, posit
     sensors = controller.sensors
     near = readings <= config.sensed_near
     steps = (np.ones_like(near), near, np.zeros_like(near))  # nested: each keeps a subset of the one before
+    if near_only:
+        steps = (near,)
     for i, keep in enumerate(steps):
-        if i and keep.sum() == steps[i - 1].sum():
+        if i and keep.sum() == steps[i - 1].sum() or not keep.any() and near_only:
             continue  # the same points as the step before: the same plan
         grown, added = with_sensed(known, points[keep], readings[keep], config.sensed_radius, sensors.noise,
                                    sensors.resolution_m)
@@ -803,11 +840,46 @@ def with_sensed(known: World, points, readings, radius: float, noise: float = 0.
     w, h = known.size
     inside = (points[:, 0] > 0) & (points[:, 0] < w) & (points[:, 1] > 0) & (points[:, 1] < h)
     points, readings = points[inside], readings[inside]
-    explained = radius + 3.0 * noise * readings + resolution
+    explained = explained_within(readings, radius, noise, resolution)
     new = points[known.clearance(points, known_only=True) > explained] if len(points) else points
     new = np.unique(np.round(new / radius) * radius, axis=0).reshape(-1, 2)  # one disc per cell
     discs = tuple(Circle((float(x), float(y)), radius) for x, y in new)
     return replace(known, obstacles=known.obstacles + discs), new
+
+
+def explained_within(readings, radius: float, noise: float, resolution: float, xp=np):
+    """m: how near a shape of the map a sensed point from ``readings`` (m) lies when the map explains it — the added
+    disc's ``radius`` plus three standard deviations of the reading's noise (``3 · noise · reading``) plus the
+    resolution of the map's shapes (:func:`with_sensed`)."""
+    return radius + 3.0 * noise * xp.asarray(readings) + resolution
+
+
+#: Standard deviations of a reading's noise a point must lie within the robot's radius of a checkpoint by, to block it
+#: (:func:`blocked_checkpoint`).
+DOUBT = 1.0
+
+
+def blocked_checkpoint(sensed: list, body, checkpoint, sight, radius: float = 0.005, near: float = 0.05) -> bool:
+    """Whether the IR of the ``sensed`` tick (a list of at most one (t, pose, readings, markers)) saw an obstacle where
+    the robot's disc would stand at ``checkpoint`` ``(2,)``: a still point read within ``near`` (m; the readings a
+    blocked checkpoint's replan adds, :func:`recovery`'s ``near_only``) lies within the robot's radius of it even
+    had its reading erred by :data:`DOUBT` standard deviations (``noise`` × reading) away from it, and the planner's
+    map ``sight`` (padded by the robot's radius) does not explain that point (:func:`explained_within`, ``radius``
+    the added disc's). Such a checkpoint cannot be reached; waiting for the trap monitor to say so cost a recovery's
+    whole time-out, again and again where an unforeseen U's arms were found a piece at a time (issue 35)."""
+    points, readings = sensed_points(sensed, body)
+    points, readings = points[readings <= near], readings[readings <= near]
+    if not len(points):
+        return False
+    sensors = body.sensors
+    doubt = DOUBT * sensors.noise * readings
+    gap = np.linalg.norm(points - np.asarray(checkpoint), axis=1) + doubt
+    k = int(np.argmin(gap))
+    r = body.robot.radius
+    if gap[k] >= r:
+        return False
+    return bool(visibility.slack(points[k], sight) + r > explained_within(readings[k], radius, sensors.noise,
+                                                                            sensors.resolution_m))
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ekm.errors import InputError
-from evaluation.scenario import RunRecord
+from evaluation.scenario import SENSED, RunRecord
 from robots.params import KHEPERA
 from robots.plot import STYLE, draw_fixed, draw_shape, frame, save_figure
 from robots.worldfile import CirclePath, World
@@ -93,8 +93,9 @@ def run_title(rec: RunRecord) -> str:
 
 
 def sensed_points(rec: RunRecord, until: float = math.inf) -> np.ndarray:
-    """``(n, 2)`` obstacle points that the recoveries up to time ``until`` added to the planner's map."""
-    added = [p.added for p in rec.plans if p.reason == "recovery" and p.t <= until and len(p.added)]
+    """``(n, 2)`` obstacle points that the recoveries and blocked checkpoints up to time ``until`` added to the
+    planner's map."""
+    added = [p.added for p in rec.plans if p.reason in SENSED and p.t <= until and len(p.added)]
     return np.vstack(added) if added else np.zeros((0, 2))
 
 
@@ -364,7 +365,7 @@ def save_animation(rec: RunRecord, path: str | os.PathLike, fps: float = 25.0, s
                               label="collisions" if rec.collision_log else None))
     traps = ax.add_line(Line2D([], [], marker="s", color="darkorange", markersize=8, fillstyle="none", mew=2,
                                linestyle="none", zorder=10, label="trap detected" if rec.trap_log else None))
-    recoveries = sorted({p.t for p in rec.plans if p.reason == "recovery"})
+    recoveries = sorted({p.t for p in rec.plans if p.reason in SENSED})
     sensed_at = {t_r: sensed_points(rec, until=t_r) for t_r in recoveries}
     sensed = ax.add_line(Line2D([], [], marker=".", markersize=3, color="0.35", alpha=0.7, linestyle="none",
                                 zorder=4, label="sensed points added to the map" if recoveries else None))

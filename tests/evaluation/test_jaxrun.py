@@ -144,6 +144,31 @@ SHUT = parse_world({"name": "shut", "size": [1.0, 0.5], "start": [0.3, 0.25, 0.0
                                 "add": [{"type": "box", "center": [0.7, 0.25], "size": [0.02, 0.3]}]}]}, "shut.json")
 
 
+#: A known wall up to y = 0.4 that the route must go round, and an unforeseen 4 cm box (x 0.49-0.53, y 0.44-0.48) over
+#: the corner: the first plan's checkpoint there, (0.51, 0.47), lies inside the box, where no robot can stand.
+BOXED_CORNER = parse_world({"name": "boxed-corner", "size": [1.0, 0.8], "walls": [[0.5, 0.0, 0.5, 0.4]],
+                            "unforeseen": [{"type": "box", "center": [0.51, 0.46], "size": [0.04, 0.04]}],
+                            "start": [0.2, 0.2, 0.0], "goal": [0.8, 0.2]}, "boxed-corner.json")
+
+
+def test_a_checkpoint_the_ir_shows_inside_an_unforeseen_box_is_replanned_at_once_on_both_engines():
+    # The scripted robot heads for the checkpoint (it avoids nothing) and its IR reads the box's near faces closer to
+    # the checkpoint than the radius (2.5 cm) less the readings' doubt within seconds, long before the trap monitor's
+    # 20 s: the plan is made again round what it saw (points on the box, grown by the readings' noise) with no
+    # recovery spent, and the robot arrives; without the rule it pushes at the box until the monitor fires.
+    jax_rec, = jaxrun.run_scenarios([(BOXED_CORNER, 0)], GO, ScenarioConfig(time_limit=60.0))
+    pymunk_rec = run_scenario(BOXED_CORNER, GO, seed=0, config=ScenarioConfig(time_limit=60.0))
+    assert np.allclose(pymunk_rec.plans[0].checkpoints[1], (0.51, 0.47), atol=0.011)  # the checkpoint in the box
+    for rec in (jax_rec, pymunk_rec):
+        assert [p.reason for p in rec.plans] == ["start", "blocked checkpoint"]
+        assert rec.plans[1].t < 5.0 and rec.recoveries == 0 and rec.replans == 1
+        added = rec.plans[1].added
+        assert len(added) and np.all((added >= (0.48, 0.43)) & (added <= (0.54, 0.49)))
+        assert rec.arrived
+    late = run_scenario(BOXED_CORNER, GO, seed=0, config=ScenarioConfig(time_limit=60.0, blocked=False))
+    assert late.plans[1].reason == "recovery" and late.plans[1].t >= 20.0
+
+
 def test_a_known_event_replans_at_the_first_tick_after_it_on_both_engines():
     # Ticks are 0.128 s apart: the first at or after 1 s is the 8th, at 1.024 s. The new plan goes round the box
     # through one of the 10 cm gaps, so the run is longer than the straight 0.6 m, and reaches without a collision.

@@ -248,6 +248,35 @@ def test_points_the_ir_saw_on_a_declared_mover_never_join_the_map():
     np.testing.assert_allclose(pts, [hit], atol=1e-12) and np.testing.assert_allclose(r, [0.02])
 
 
+def test_a_checkpoint_is_blocked_by_an_unexplained_point_within_the_robots_radius_of_it():
+    from evaluation.scenario import blocked_checkpoint
+    from planner.bitmap import padded_obstacles
+
+    ctl = steering()  # short-range ring: sensor 2 at +10 degrees; radius 2.5 cm
+    world = parse_world({"name": "wall", "size": [1.0, 1.0], "walls": [[0.5, 0.0, 0.5, 0.4]], "start": [0.1, 0.1, 0.0],
+                         "goal": [0.9, 0.1]}, "wall.json")
+    sight = padded_obstacles(world, 0.0, KHEPERA.radius)
+    readings = np.full(8, np.inf)
+    readings[2] = 0.02
+    ray = np.array([np.cos(np.radians(10)), np.sin(np.radians(10))])
+    pose = np.array([0.3, 0.7, 0.0])
+    hit = pose[:2] + 0.045 * ray  # (0.34432, 0.70781), in the open, 30 cm from the wall's end
+    tick = [(0.0, pose, readings, np.zeros((0, 5)))]
+    # the reading's doubt, one standard deviation: 10 % of 2 cm = 2 mm; blocked within 2.5 - 0.2 = 2.3 cm
+    assert blocked_checkpoint(tick, ctl, hit + (0.022, 0.0), sight)  # the disc overlaps the point, had it erred 2 mm
+    assert not blocked_checkpoint(tick, ctl, hit + (0.024, 0.0), sight)  # within the radius, but not beyond doubt
+    assert not blocked_checkpoint(tick, ctl, hit + (0.03, 0.0), sight)  # 3 cm: the disc fits beside it
+    assert not blocked_checkpoint([(0.0, pose, np.full(8, np.inf), np.zeros((0, 5)))], ctl, hit, sight)  # saw nothing
+    on_mover = np.array([[hit[0] + 0.01, hit[1], 0.05, 0.0, 0.025]])
+    assert not blocked_checkpoint([(0.0, pose, readings, on_mover)], ctl, hit + (0.005, 0.0), sight)
+    # the wall's face (x = 0.495, its half thickness 5 mm) read at 2 cm from (0.4446, 0.2): a checkpoint 5 mm off it
+    # is within 2.3 cm of the point, but the map explains the point (a wall's point, the reading's noise): no
+    wall_pose = np.array([0.495 - 0.045 * ray[0], 0.2, 0.0])
+    face = wall_pose[:2] + 0.045 * ray
+    assert abs(face[0] - 0.495) < 1e-12
+    assert not blocked_checkpoint([(0.0, wall_pose, readings, np.zeros((0, 5)))], ctl, face - (0.005, 0.0), sight)
+
+
 def test_the_first_plan_keeps_off_a_declared_movers_lane_unless_lanes_are_off():
     """The corridor of tests/planner/test_lanes.py: a box shuttles down its middle, and the straight route from
     start to goal runs along the box's lane. Both engines follow the plan that keeps off it (planner.plan's
