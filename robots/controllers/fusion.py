@@ -8,7 +8,7 @@ when the checkpoint changes ("the target reaching module can react immediately t
 checkpoint", Fig. 6.5). Each new module output updates the shared motor state (the last c_p and c_o),
 and the fused command is sent whenever it changes; sending an unchanged command changes nothing.
 
-Three readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/architectures.md``):
+Four readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/architectures.md``):
 
 - **β and the stop.** Eq. 4.11 scales target reaching by β even in free space, and the Khepera's
   speed unit (8 mm/s) rounds β c_p to zero 1/β times further from the target than c_p itself: with
@@ -37,6 +37,14 @@ Three readings of ch. 4.4–4.5, chosen by measurement (``docs/reproduce/archite
   (2 cm) of the body (:func:`robots.controllers.discrete.as_readings`): Z answers the wall end as the body swings
   past it. Only what is near counts: read at every distance, a corridor's remembered walls fill every sector and
   hold the robot at the first bend.
+- **What is in the way.** Ch. 4.4's vehicle answers everything its forward-facing sensors read. In a corridor or
+  niche a few centimetres wider than the robot the ±45° pair reads both walls at once: each brakes the robot
+  through its large negative weight, the pair stops it short of a goal at a niche's end, and the one that reads
+  nearer as the robot swings swings it back, from side to side. With ``lane`` (0, an extension) a forward-facing
+  sensor and its mirror that both read a point farther than the robot's radius plus ``lane`` to the side of the
+  line of travel — a passage's two walls, (radius + r)|sin φ| off it — are read as nothing
+  (:func:`in_the_way`); a wall on one side alone still counts, as the robot may be closing on it, and the ±10° pair
+  always does (its points lie within 1.3 cm of the line).
 
 Command fusion drives the polar-chart map by default (:data:`DEFAULT_CHART`): a signed-chart map
 reverses onto targets behind (:mod:`ekm.charts`), the polar one only onto those close behind, and a
@@ -59,7 +67,7 @@ from ekm import indirect
 from ekm.config import EKMConfig
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, avoid_option, proximity, readings_to_the_goal
-from robots.controllers.braitenberg import avoid, z_matrix
+from robots.controllers.braitenberg import FRONT, avoid, z_matrix
 from robots.controllers.discrete import as_readings, sense
 from robots.params import KHEPERA, RobotParams, SensorSet
 
@@ -68,8 +76,9 @@ from robots.params import KHEPERA, RobotParams, SensorSet
 class FusionParams:
     """Parameters of command fusion; the defaults are the thesis's ch. 6.2.1 set-up but ``avoid`` (``nearer``, an
     extension: at the goal nothing beyond it is avoided; ``all`` is ch. 4.5's), ``facing`` (``travel``, an
-    extension: Z turned round while target reaching reverses; ``front`` is ch. 4.4's) and ``remember`` (true, an
-    extension: the sensors also read the remembered IR points in their sectors; false is ch. 4.4's)."""
+    extension: Z turned round while target reaching reverses; ``front`` is ch. 4.4's), ``remember`` (true, an
+    extension: the sensors also read the remembered IR points in their sectors; false is ch. 4.4's) and ``lane``
+    (0, an extension: a passage's two walls are not avoided; 1 or more is ch. 4.4's)."""
 
     sensors: str = field(default="short", metadata={"help": "IR ring: short (8 Khepera sensors, 5 cm) or long "
                                                             "(12 around, 17.5 cm)", "choices": ("short", "long")})
@@ -96,6 +105,10 @@ class FusionParams:
                 "false: its own return alone, ch. 4.4)"})
     within: float = field(default=0.02, metadata={
         "help": "remember=true: m from the body within which a remembered point is read"})
+    lane: float = field(default=0.0, metadata={
+        "help": "m: a forward-facing sensor and its mirror that both read walls farther than the robot's radius plus "
+                "this to the side of the line of travel (a passage) are not avoided (1 or more: everything read is, "
+                "ch. 4.4; an extension)"})
     memory_points: int = mem.option("memory_points", 128, "remember=true")
     memory_s: float = mem.option("memory_s", 30.0, "remember=true")
     merge: float = mem.option("merge", 0.01, "remember=true")
@@ -108,6 +121,8 @@ class FusionParams:
             raise ValueError(f"cross and same must be >= 0, got {self.cross}, {self.same}")
         if not 0.0 < self.back_cone <= 180.0:
             raise ValueError(f"back_cone must be in (0, 180] degrees, got {self.back_cone}")
+        if not self.lane >= 0:
+            raise ValueError(f"lane must be >= 0 (1 or more: off), got {self.lane}")
         for name in ("memory_s", "merge", "see_through", "within"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
@@ -135,10 +150,11 @@ def init(p: FusionParams = FusionParams()) -> FusionState:
                        mem.empty(p.memory_points))
 
 
-@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer", "remember", "radius"))
+@partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer", "remember", "radius",
+                                   "lane", "front"))
 def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
          sensors: SensorSet, on_sensed: bool = False, nearer: bool = False, remember: tuple | None = None,
-         radius: float = KHEPERA.radius):
+         radius: float = KHEPERA.radius, lane: float = 1.0, front: tuple = (0.0, 0.0)):
     """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
     beyond the goal; with ``remember`` = (merge, memory_s, see_through, within), the remembered points too,
     :func:`~robots.controllers.discrete.as_readings`) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives
@@ -156,9 +172,29 @@ def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: 
         memory, points, valid = sense(memory, obs, angles, radius=radius, range_m=sensors.range_m, merge=merge,
                                       memory_s=memory_s, through=through, nearer=nearer)
         readings = as_readings(points, valid, angles, jnp.asarray(readings, jnp.float32), radius=radius, within=within)
+    if lane < 1.0:
+        readings = in_the_way(readings, jnp.asarray(sensors.angles, jnp.float32), reversing, radius, lane, front)
     c_o = avoid(z[reversing], proximity(readings, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
     return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32), memory), c
+
+
+def in_the_way(readings, angles, reversing, radius: float, lane: float, front: tuple):
+    """``readings`` ``(m,)`` with those of a passage's walls read as nothing: a forward-facing sensor of Z (within
+    ``front[reversing]`` rad of the way it faces; ``front[1]`` None when Z faces the front while reversing too) whose
+    point lies farther than ``radius + lane`` from the line of travel — the point a sensor at φ from that way reads at
+    r lies (radius + r)|sin φ| to the side — while its mirror sensor (at −φ) reads one so far on the other side. Walls
+    on both sides of a corridor or niche a few centimetres wider than the robot are not in its way; read, they brake
+    it through its ±45° sensors and swing it from side to side. A wall on one side alone still counts: the robot may
+    be closing on it (``lane``, an extension)."""
+    turned = front[1] is not None
+    phi = angles - jnp.pi * reversing if turned else angles
+    cone = jnp.where(reversing == 1, front[1], front[0]) if turned else front[0]
+    ahead = jnp.cos(phi) >= jnp.cos(cone) - 1e-6
+    aside = ahead & jnp.isfinite(readings) & ((radius + readings) * jnp.abs(jnp.sin(phi)) > radius + lane)
+    mirror = jnp.argmin(jnp.abs(jnp.sin(0.5 * (angles[:, None] + angles[None, :]))) + jnp.abs(
+        jnp.cos(angles[:, None]) - jnp.cos(angles[None, :])), axis=1)  # the sensor at -φ (φ's own where none)
+    return jnp.where(aside & aside[mirror], jnp.inf, readings)
 
 
 def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPERA, spec: str = "fusion") -> Controller:
@@ -173,6 +209,7 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
                   on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer",
                   remember=((params.merge, params.memory_s, params.see_through, params.within) if params.remember
                             else None),
-                  radius=robot.radius)
+                  radius=robot.radius, lane=params.lane,
+                  front=(FRONT, math.radians(params.back_cone) if params.facing == "travel" else None))
     return Controller(name="fusion", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
                       robot=robot)

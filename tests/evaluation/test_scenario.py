@@ -122,7 +122,7 @@ def test_a_moving_goal_is_caught_under_the_robots_body():
 def test_recovery_adds_the_sensed_obstacle_to_the_map_and_replans():
     world = load_world("extended-obstacle")
     # ch. 4.4's command fusion, which the long wall traps (the default's turned Z backs it round the wall's end)
-    rec = run_architecture(world, parse_architecture("fusion:facing=front,remember=false"), seed=0,
+    rec = run_architecture(world, parse_architecture("fusion:facing=front,remember=false,lane=1"), seed=0,
                            config=ScenarioConfig(recover=True, trap_after=10.0, time_limit=40.0))
     assert rec.recoveries >= 1 and "recovery" in [p.reason for p in rec.plans]
     first = next(p for p in rec.plans if p.reason == "recovery")
@@ -357,9 +357,9 @@ def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it
 # Command fusion with ch. 4.4's vehicle: Z's forward-facing sensors always the robot's front, reading its sensors
 # alone (the defaults turn Z round while the map reverses and read the memory near the body, extensions measured on
 # the generated suite: docs/reproduce/architectures.md).
-FUSION = "fusion:facing=front,remember=false"
+FUSION = "fusion:facing=front,remember=false,lane=1"
 # ch. 6.2.2: 12 long-range sensors, both modules at 0.128 s
-FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front,remember=false"
+FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front,remember=false,lane=1"
 THESIS = ScenarioConfig(checkpoints="thesis", recover=False)
 
 

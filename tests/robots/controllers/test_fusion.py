@@ -119,3 +119,30 @@ def test_fusion_remembers_a_wall_end_its_sensors_have_lost_and_answers_it_with_t
         _, sends[remember] = ctl.step(state, observation(np.full(8, np.inf), t=0.128,
                                                          pose=(0.5, 0.5, np.radians(-25.0))))
     np.testing.assert_allclose(np.asarray(sends[True]) - np.asarray(sends[False]), [0.042, 0.021], atol=1e-4)
+
+
+def test_fusion_reads_a_passages_two_walls_as_nothing_but_a_wall_on_one_side_and_whatever_is_ahead():
+    # Khepera ring: 85, 45, 10, -10, -45, -85, -160, 160 degrees; radius 2.5 cm; lane 5 mm (the default is 0). A point
+    # a sensor at 45 degrees reads at r lies (0.025 + r) sin 45 to the side: at r = 3.9 cm, 4.53 cm > 3 cm, aside; at
+    # r = 1 cm, 2.47 cm, within 3 cm: in the way. The 10-degree pair: (0.025 + 0.05) sin 10 = 1.3 cm, always in the way.
+    angles = jnp.asarray(fusion.KHEPERA.short_range.angles, jnp.float32)
+    front = (fusion.FRONT, None)
+    inf = np.inf
+
+    def seen(readings, reversing=0):
+        out = fusion.in_the_way(jnp.asarray(readings, jnp.float32), angles, reversing, 0.025, 0.005, front)
+        return np.isfinite(np.asarray(out))
+
+    corridor = [0.02, 0.039, inf, inf, 0.039, 0.02, inf, inf]  # both walls of a 9 cm corridor, centred
+    assert seen(corridor).tolist() == [True, False, False, False, False, True, False, False]  # the 45s read nothing
+    one_wall = [0.02, 0.039, inf, inf, inf, inf, inf, inf]  # the left wall alone: the robot may be closing on it
+    assert seen(one_wall).tolist() == [True, True, False, False, False, False, False, False]
+    near_walls = [inf, 0.01, inf, inf, 0.039, inf, inf, inf]  # the left wall within 3 cm of the line: in the way
+    assert seen(near_walls)[1] and seen(near_walls)[4]
+    dead_ahead = [inf, 0.039, 0.05, 0.05, 0.039, inf, inf, inf]  # a passage's walls and the end of it ahead
+    assert seen(dead_ahead).tolist() == [False, False, True, True, False, False, False, False]
+    # with Z turned round while reversing (front[1] = 100 degrees of the way back), the rear pair (20 degrees off it)
+    # reading both walls of the passage behind, (0.025 + 0.03) sin 20 = 1.9 cm to the side: in the way
+    back = [inf, inf, inf, inf, inf, inf, 0.03, 0.03]
+    turned = fusion.in_the_way(jnp.asarray(back, jnp.float32), angles, 1, 0.025, 0.005, (fusion.FRONT, np.radians(100)))
+    assert np.isfinite(np.asarray(turned)).tolist() == [False] * 6 + [True, True]
