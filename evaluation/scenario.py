@@ -813,8 +813,10 @@ def recovery(previous, known: World, sensed: list, controller: Controller, posit
     if near_only:
         steps = (near,)
     for i, keep in enumerate(steps):
-        if i and keep.sum() == steps[i - 1].sum() or not keep.any() and near_only:
+        if i and keep.sum() == steps[i - 1].sum():
             continue  # the same points as the step before: the same plan
+        if near_only and not keep.any():
+            continue  # nothing near to plan round
         grown, added = with_sensed(known, points[keep], readings[keep], config.sensed_radius, sensors.noise,
                                    sensors.resolution_m)
         current = replan_from(previous, grown, np.asarray(position, float), t, controller.robot, config)
