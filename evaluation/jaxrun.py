@@ -57,8 +57,9 @@ import jax.numpy as jnp
 import numpy as np
 
 from evaluation import jaxmonitor
-from evaluation.scenario import (DOUBT, MOVER_MARGIN, PlanChange, RunRecord, ScenarioConfig, explained_within, first_plan,
-                                 mover_radius, recovery, replan_from, split_step, time_limit_for, turn_on_the_spot)
+from evaluation.scenario import (DOUBT, MOVER_MARGIN, PlanChange, RunRecord, ScenarioConfig, explained_within,
+                                 first_plan, mover_radius, recovery, replan_from, split_step, time_limit_for,
+                                 turn_on_the_spot)
 from robots import kinematics
 from robots.controllers.base import Observation, hit_points
 from robots.jaxworld import engine, moving
@@ -332,8 +333,9 @@ def tick(setup: Setup, route: Route, state: RunState, arrays, passed_to) -> tupl
 
 def blocked(setup: Setup, route: Route, pose, ir, markers, checkpoint):
     """:func:`evaluation.scenario.blocked_checkpoint` of one run's tick: whether a still point its IR ``ir`` saw from
-    ``pose`` within ``sensed_near`` lies within the robot's radius of the ``checkpoint`` ``(2,)`` even with the reading's doubt, unexplained
-    by the planner's map ``route.sight``. False where the scenario's rules replan on no such thing (no recovery)."""
+    ``pose`` within ``sensed_near`` lies within the robot's radius of the ``checkpoint`` ``(2,)`` even with the
+    reading's doubt, unexplained by the planner's map ``route.sight``. False where the scenario's rules replan on no
+    such thing (no recovery)."""
     config, p, sensors = setup.config, setup.params, setup.sensors
     if not (config.recover and config.blocked):
         return jnp.bool_(False)
@@ -517,8 +519,13 @@ def recover(run: Run, pose, t: float, config: ScenarioConfig):
     if found is None:
         run.trapped_why = "trapped (no route around the sensed obstacle)"
         return None
-    current, known, added = found
-    run.rec.plans.append(PlanChange(t, "recovery", current.checkpoints.copy(), added, current.avoided))
+    return _adopted(run, t, "recovery", *found)
+
+
+def _adopted(run: Run, t: float, reason: str, current, known, added) -> np.ndarray:
+    """Run ``run`` on the plan ``current`` made at ``t`` for ``reason`` round what ``added`` put on the map ``known``
+    (recorded as a :class:`PlanChange`): its checkpoints."""
+    run.rec.plans.append(PlanChange(t, reason, current.checkpoints.copy(), added, current.avoided))
     run.plan, run.known, run.replans, run.map_t = current, known, run.replans + 1, t
     return current.checkpoints
 
@@ -528,12 +535,7 @@ def unblock(run: Run, pose, t: float, config: ScenarioConfig):
     showed it at ``t`` with the robot at ``pose``: its checkpoints on the new plan, or None (what it sensed leaves no
     route: the checkpoint stays)."""
     found = recovery(run.plan, run.known, run.sensed, run.body, pose[:2], t, config, near_only=True)
-    if found is None:
-        return None
-    current, known, added = found
-    run.rec.plans.append(PlanChange(t, "blocked checkpoint", current.checkpoints.copy(), added, current.avoided))
-    run.plan, run.known, run.replans, run.map_t = current, known, run.replans + 1, t
-    return current.checkpoints
+    return None if found is None else _adopted(run, t, "blocked checkpoint", *found)
 
 
 def after_event(run: Run, pose, t: float, config: ScenarioConfig):

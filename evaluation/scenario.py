@@ -774,11 +774,13 @@ def _markers(world: World, sim: PymunkWorld, t: float, radii: np.ndarray) -> np.
     return np.concatenate([pos, vel, radii[:, None]], axis=1).astype(np.float32)
 
 
-#: m: a sensed point within a declared mover's radius plus this of where the mover was is the mover (:func:`sensed_points`).
+#: m: a sensed point within a declared mover's radius plus this of where the mover was is the mover
+#: (:func:`sensed_points`).
 MOVER_MARGIN = 0.01
 
 
-def sensed_points(sensed: list, controller: Controller, margin: float = MOVER_MARGIN) -> tuple[np.ndarray, np.ndarray]:
+def sensed_points(sensed: list, controller: Controller,
+                  margin: float = MOVER_MARGIN) -> tuple[np.ndarray, np.ndarray]:
     """Every still obstacle point the IR saw in the ``sensed`` ticks (t, pose, readings, markers), ``(n, 2)``, and
     the reading ``(n,)`` (m from the body surface) each came from. A point within a declared mover's radius +
     ``margin`` of where the mover was at that tick is the mover, not an obstacle to plan round."""

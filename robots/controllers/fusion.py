@@ -151,10 +151,10 @@ def init(p: FusionParams = FusionParams()) -> FusionState:
 
 
 @partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer", "remember", "radius",
-                                   "lane", "front"))
+                                   "passage"))
 def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
          sensors: SensorSet, on_sensed: bool = False, nearer: bool = False, remember: tuple | None = None,
-         radius: float = KHEPERA.radius, lane: float = 1.0, front: tuple = (0.0, 0.0)):
+         radius: float = KHEPERA.radius, passage: tuple | None = None):
     """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
     beyond the goal; with ``remember`` = (merge, memory_s, see_through, within), the remembered points too,
     :func:`~robots.controllers.discrete.as_readings`) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives
@@ -172,28 +172,35 @@ def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: 
         memory, points, valid = sense(memory, obs, angles, radius=radius, range_m=sensors.range_m, merge=merge,
                                       memory_s=memory_s, through=through, nearer=nearer)
         readings = as_readings(points, valid, angles, jnp.asarray(readings, jnp.float32), radius=radius, within=within)
-    if lane < 1.0:
-        readings = in_the_way(readings, jnp.asarray(sensors.angles, jnp.float32), reversing, radius, lane, front)
+    if passage is not None:
+        lane, front, mirror = passage
+        readings = in_the_way(readings, jnp.asarray(sensors.angles, jnp.float32), reversing, radius, lane, front,
+                              jnp.asarray(mirror))
     c_o = avoid(z[reversing], proximity(readings, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
     return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32), memory), c
 
 
-def in_the_way(readings, angles, reversing, radius: float, lane: float, front: tuple):
+def mirrors(angles) -> tuple[int, ...]:
+    """The index of the sensor at −φ for each sensor at φ of ``angles`` (rad), its own where there is none."""
+    a = np.asarray(angles, dtype=float)
+    cost = np.abs(np.sin(0.5 * (a[:, None] + a[None, :]))) + np.abs(np.cos(a[:, None]) - np.cos(a[None, :]))
+    return tuple(int(j) for j in np.argmin(cost, axis=1))
+
+
+def in_the_way(readings, angles, reversing, radius: float, lane: float, front: tuple, mirror):
     """``readings`` ``(m,)`` with those of a passage's walls read as nothing: a forward-facing sensor of Z (within
-    ``front[reversing]`` rad of the way it faces; ``front[1]`` None when Z faces the front while reversing too) whose
-    point lies farther than ``radius + lane`` from the line of travel — the point a sensor at φ from that way reads at
-    r lies (radius + r)|sin φ| to the side — while its mirror sensor (at −φ) reads one so far on the other side. Walls
-    on both sides of a corridor or niche a few centimetres wider than the robot are not in its way; read, they brake
-    it through its ±45° sensors and swing it from side to side. A wall on one side alone still counts: the robot may
-    be closing on it (``lane``, an extension)."""
+    ``front[reversing]`` rad of the way it faces; ``front[1]`` None when Z faces the front while reversing too)
+    whose point lies farther than ``radius + lane`` from the line of travel — the point a sensor at φ from that way
+    reads at r lies (radius + r)|sin φ| to the side — while its mirror sensor (``mirror`` ``(m,)``, :func:`mirrors`)
+    reads one so far on the other side. Walls on both sides of a corridor or niche a few centimetres wider than the
+    robot are not in its way; read, they brake it through its ±45° sensors and swing it from side to side. A wall on
+    one side alone still counts: the robot may be closing on it (``lane``, an extension)."""
     turned = front[1] is not None
     phi = angles - jnp.pi * reversing if turned else angles
     cone = jnp.where(reversing == 1, front[1], front[0]) if turned else front[0]
     ahead = jnp.cos(phi) >= jnp.cos(cone) - 1e-6
     aside = ahead & jnp.isfinite(readings) & ((radius + readings) * jnp.abs(jnp.sin(phi)) > radius + lane)
-    mirror = jnp.argmin(jnp.abs(jnp.sin(0.5 * (angles[:, None] + angles[None, :]))) + jnp.abs(
-        jnp.cos(angles[:, None]) - jnp.cos(angles[None, :])), axis=1)  # the sensor at -φ (φ's own where none)
     return jnp.where(aside & aside[mirror], jnp.inf, readings)
 
 
@@ -209,7 +216,8 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
                   on_sensed=params.refresh == "sensed", nearer=params.avoid == "nearer",
                   remember=((params.merge, params.memory_s, params.see_through, params.within) if params.remember
                             else None),
-                  radius=robot.radius, lane=params.lane,
-                  front=(FRONT, math.radians(params.back_cone) if params.facing == "travel" else None))
+                  radius=robot.radius,
+                  passage=((params.lane, (FRONT, math.radians(params.back_cone) if params.facing == "travel" else None),
+                            mirrors(sensors.angles)) if params.lane < 1.0 else None))
     return Controller(name="fusion", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
                       robot=robot)

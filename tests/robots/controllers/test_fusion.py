@@ -127,10 +127,12 @@ def test_fusion_reads_a_passages_two_walls_as_nothing_but_a_wall_on_one_side_and
     # r = 1 cm, 2.47 cm, within 3 cm: in the way. The 10-degree pair: (0.025 + 0.05) sin 10 = 1.3 cm, always in the way.
     angles = jnp.asarray(fusion.KHEPERA.short_range.angles, jnp.float32)
     front = (fusion.FRONT, None)
+    mirror = jnp.asarray([5, 4, 3, 2, 1, 0, 7, 6])  # the sensor at -phi, by hand
+    assert fusion.mirrors(fusion.KHEPERA.short_range.angles) == (5, 4, 3, 2, 1, 0, 7, 6)
     inf = np.inf
 
     def seen(readings, reversing=0):
-        out = fusion.in_the_way(jnp.asarray(readings, jnp.float32), angles, reversing, 0.025, 0.005, front)
+        out = fusion.in_the_way(jnp.asarray(readings, jnp.float32), angles, reversing, 0.025, 0.005, front, mirror)
         return np.isfinite(np.asarray(out))
 
     corridor = [0.02, 0.039, inf, inf, 0.039, 0.02, inf, inf]  # both walls of a 9 cm corridor, centred
@@ -144,5 +146,6 @@ def test_fusion_reads_a_passages_two_walls_as_nothing_but_a_wall_on_one_side_and
     # with Z turned round while reversing (front[1] = 100 degrees of the way back), the rear pair (20 degrees off it)
     # reading both walls of the passage behind, (0.025 + 0.03) sin 20 = 1.9 cm to the side: in the way
     back = [inf, inf, inf, inf, inf, inf, 0.03, 0.03]
-    turned = fusion.in_the_way(jnp.asarray(back, jnp.float32), angles, 1, 0.025, 0.005, (fusion.FRONT, np.radians(100)))
+    turned = fusion.in_the_way(jnp.asarray(back, jnp.float32), angles, 1, 0.025, 0.005,
+                               (fusion.FRONT, np.radians(100)), mirror)
     assert np.isfinite(np.asarray(turned)).tolist() == [False] * 6 + [True, True]
