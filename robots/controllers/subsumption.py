@@ -27,7 +27,10 @@ obstacle points, this tick's IR hits and those remembered (:func:`~robots.contro
    the robot within ``flee`` on a line that meets the body (within ``flee_lane`` of it) takes precedence: the
    robot gets out of the mover's line (``cruise``, ``back`` or a spin towards the way out, :func:`flee`) — and
    this runaway suppresses back out too (an extension, issue 35: backing out, the robot backed into the line
-   of a mover circling its goal); *collide* — a point in that corridor within ``halt``
+   of a mover circling its goal); a declared mover in that corridor within ``keep_back`` that flee does not answer
+   (going on ahead, or across) makes it ``stop`` while go-to-checkpoint speaks — let it go on before following it (an
+   extension, issue 35: a mover shuttling along a corridor turned back on the robot following it 3 cm behind, and
+   the runaway's spin came too late); *collide* — a point in that corridor within ``halt``
    **inhibits** forward motion: whatever response reaches the wheels loses its forward speed (Brooks's
    collide → halt). Go-to-checkpoint **suppresses** runaway's reach (an input of the layer below, as
    Brooks's wander suppresses avoid's heading) to what lies before the checkpoint — what is beyond it is no
@@ -98,6 +101,9 @@ class SubsumptionParams:
                                                         "mover closing on the robot makes it get out of its line"})
     flee_lane: float = field(default=0.012, metadata={"help": "avoid: m beside a closing mover's line within which "
                                                               "the body is in its way (farther, it passes clear)"})
+    keep_back: float = field(default=0.08, metadata={
+        "help": "avoid: m ahead within which a declared mover in the corridor the body sweeps (one flee does not "
+                "answer: going on, or across) makes it stop until the mover has gone on (0: never)"})
     halt: float = field(default=0.01, metadata={"help": "avoid (collide): m ahead within which forward motion is "
                                                         "inhibited"})
     spin_above: float = field(default=0.6, metadata={"help": "goto: rad off the checkpoint above which it spins"})
@@ -266,6 +272,10 @@ def layers(state: SubsumptionState, obs: Observation, angles, p: SubsumptionPara
     reach = jnp.where(go >= 0, jnp.clip(d - radius, 0.0, p.near), p.near)
     run_away, collide = avoid(points, seen, reach, p, radius)
     escape = flee(obs, points, seen, p, radius)
+    if p.keep_back > 0:  # a mover ahead, going on or across: let it go before following (it may turn back)
+        k = memory.points.shape[0]  # the rows after are the declared movers' nearest points
+        behind_one = jnp.any(in_the_way(points[k:], seen[k:], radius, p.margin, p.keep_back))
+        escape = jnp.where((escape < 0) & behind_one & (go >= 0), STOP, escape)
     run_away = jnp.where(escape >= 0, escape, run_away)
 
     # backout: counts avoid episodes (rising edges) since the last progress

@@ -123,3 +123,20 @@ def test_a_closing_mover_suppresses_back_out_and_the_robot_gets_out_of_its_line(
     assert int(t.backout) == sub.BACK and int(t.response) == sub.BACK
     _, t = tick(long_ring(), state=state, t=6 * 0.128, markers=[(0.42, 0.5, 0.1, 0.0, 0.02)])
     assert int(t.backout) == sub.BACK and int(t.layer) == 0 and int(t.response) == sub.SPIN_LEFT
+
+
+@pytest.mark.parametrize("mover, keep_back, response", [
+    ((0.62, 0.5, 0.05, 0.0, 0.025), None, sub.STOP),  # 7 cm ahead, going on: stop until it has gone 8 cm on
+    ((0.62, 0.5, 0.05, 0.0, 0.025), 0.0, sub.CRUISE),  # never: goto cruises after it
+    ((0.62, 0.5, 0.05, 0.0, 0.025), 0.05, sub.CRUISE),  # 7 cm > 5 cm: not yet
+    ((0.62, 0.56, 0.05, 0.0, 0.025), None, sub.CRUISE)])  # beside the corridor: its nearest point 4.9 cm off the line
+def test_a_mover_ahead_going_on_stops_the_robot_until_it_has_gone(mover, keep_back, response):
+    """The robot (radius 2.5 cm) at (0.5, 0.5) facing +x, its checkpoint 30 cm ahead. A mover of 2.5 cm radius at
+    (0.62, 0.5) going on at 5 cm/s: its nearest point 9.5 cm from the robot's centre, 7 cm from the body (beyond
+    avoid's 4 cm), in the corridor the body sweeps — within keep_back (8 cm by default) the robot stops (a mover
+    shuttling along a corridor turns back on a robot following it, tuning movers:4); at (0.62, 0.56) the nearest
+    point, (12, 6) cm · 10.9 / 13.4 = (9.8, 4.9) cm from the centre, lies beyond the corridor's 2.5 + 1.2 cm: goto
+    cruises."""
+    p = P if keep_back is None else sub.SubsumptionParams(keep_back=keep_back)
+    _, t = tick(long_ring(), markers=[mover], p=p)
+    assert int(t.response) == response
