@@ -139,8 +139,9 @@ class SubsumptionParams:
                      "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        if not self.margin >= 0:
-            raise ValueError(f"margin must be >= 0, got {self.margin}")
+        for name in ("margin", "keep_back"):
+            if not getattr(self, name) >= 0:
+                raise ValueError(f"{name} must be >= 0, got {getattr(self, name)}")
         if not (isinstance(self.memory_points, int) and self.memory_points >= 1):
             raise ValueError(f"memory_points must be a whole number >= 1, got {self.memory_points}")
         if not (isinstance(self.attempts, int) and self.attempts >= 1):

@@ -140,3 +140,9 @@ def test_a_mover_ahead_going_on_stops_the_robot_until_it_has_gone(mover, keep_ba
     p = P if keep_back is None else sub.SubsumptionParams(keep_back=keep_back)
     _, t = tick(long_ring(), markers=[mover], p=p)
     assert int(t.response) == response
+
+
+@pytest.mark.parametrize("bad", ["keep_back=-0.01", "margin=-0.001"])
+def test_a_negative_distance_is_refused_with_its_name(bad):
+    with pytest.raises(ValueError, match=bad.split("=")[0] + " must be >= 0"):
+        parse_architecture(f"subsumption:{bad}")
