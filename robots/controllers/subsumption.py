@@ -29,8 +29,8 @@ obstacle points, this tick's IR hits and those remembered (:func:`~robots.contro
    this runaway suppresses back out too (an extension, issue 35: backing out, the robot backed into the line
    of a mover circling its goal); a declared mover in that corridor within ``keep_back`` that flee does not answer
    (going on ahead, or across) makes it ``stop`` while go-to-checkpoint speaks — let it go on before following it (an
-   extension, issue 35: a mover shuttling along a corridor turned back on the robot following it 3 cm behind, and
-   the runaway's spin came too late); *collide* — a point in that corridor within ``halt``
+   extension, issue 35: a mover shuttling along a corridor turned back on the robot following close behind it,
+   and the runaway's spin came too late; measured in ``docs/reproduce/every-kind.md``); *collide* — a point in that corridor within ``halt``
    **inhibits** forward motion: whatever response reaches the wheels loses its forward speed (Brooks's
    collide → halt). Go-to-checkpoint **suppresses** runaway's reach (an input of the layer below, as
    Brooks's wander suppresses avoid's heading) to what lies before the checkpoint — what is beyond it is no
