@@ -28,6 +28,13 @@ assess the forces from the robot's current position"). The schemas, as Arkin enc
   the same law from each marker's *current* position, with g the gap between the two bodies (centre
   distance − marker radius − body radius) — Arkin instantiates the schema "differently for either
   environmental obstacles or other robots"; it reacts to where a mover is, not where it will be;
+- **avoid-static-obstacle for the lane ahead** (``lane``, an extension): the IR hits are also remembered in the
+  world frame (:mod:`~robots.controllers.memory`, as Samba remembers them), and of the remembered points that no
+  ray reads this tick, the nearest ahead of the robot within ``lane`` of the strip its body sweeps pushes by the
+  same law as a reading there would. The long ring's rays are 30° apart: a doorway's jamb or a pillar the robot
+  drives at slips between them and goes unread for the ticks before the contact (traced in
+  ``docs/reproduce/every-kind.md``). Only the lane counts, and only its nearest point: every remembered point
+  pushing (the same law, summed) holds the robot off narrow doorways and niches;
 - **noise**: magnitude ``noise_gain``, direction a random compass direction redrawn every
   ``persistence`` s (Arkin's p, the persistence) — his "reactive grease" against local minima. The
   direction is fixed in the world frame (a compass direction, as in Fig. 4.10D), so it does not turn
@@ -67,6 +74,8 @@ itself, one on a flat obstacle across the way does not — ``docs/reproduce/arch
 - ``margin_gain`` 1.0 m/s: Arkin's ∞, six times c*, more than move-to-goal and noise together;
 - ``marker_gain`` 0.24 m/s: the declared movers get the same law and gain as any sensed point (with
   the long-range ring, 0.16 and 0.32 gave the same outcomes; no run touched the mover);
+- ``lane`` 0.01 m beside the body's strip: the best of 0–2 cm on the generated families' tuning seeds; wider
+  lanes lose narrow niches (the measurements: ``docs/reproduce/every-kind.md``);
 - ``noise_gain`` 0.04 m/s (a quarter of move-to-goal) with ``persistence`` 2.048 s (16 ticks):
   Arkin's "small amount of noise"; it frees the robot from a balance on a small obstacle straight across
   its way, but not from the long wall or the U (much more noise gets round the wall in some runs but
@@ -83,8 +92,9 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 
-from robots.controllers.base import (Controller, Observation, avoid_option, on_ring, readings_to_the_goal,
-                                     velocity_to_wheels)
+from robots.controllers import memory as mem
+from robots.controllers.base import (Controller, Observation, avoid_option, beyond_the_goal, on_ring,
+                                     readings_to_the_goal, ring, velocity_to_wheels)
 from robots.params import KHEPERA, RobotParams
 
 
@@ -116,14 +126,23 @@ class SchemaParams:
     seed: int = field(default=0, metadata={"help": "noise: seed of the PRNG key"})
     avoid: str = avoid_option("which readings avoid-static-obstacle answers: all (Arkin) or nearer (at the goal, none "
                               "beyond it; an extension)")
+    lane: float = field(default=0.01, metadata={"help": "avoid-static-obstacle also answers the nearest remembered IR "
+                                                        "point no ray reads this tick in the lane the body sweeps "
+                                                        "ahead, this many m beside it (0: off; an extension)"})
+    memory_points: int = mem.option("memory_points", 128)
+    memory_s: float = mem.option("memory_s", 30.0)
+    merge: float = mem.option("merge", 0.01)
+    see_through: float = mem.option("see_through", 0.005, why="the points' radius, merge / 2, as Samba's")
 
     def __post_init__(self):
-        for name in ("goal_gain", "slow", "influence", "persistence"):
+        for name in ("goal_gain", "slow", "influence", "persistence", "memory_s", "merge", "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        for name in ("avoid_gain", "margin", "margin_gain", "marker_gain", "noise_gain"):
+        for name in ("avoid_gain", "margin", "margin_gain", "marker_gain", "noise_gain", "lane"):
             if not getattr(self, name) >= 0:
                 raise ValueError(f"{name} must be >= 0, got {getattr(self, name)}")
+        if self.memory_points < 1:
+            raise ValueError(f"memory_points must be >= 1, got {self.memory_points}")
         if not self.margin < self.influence:
             raise ValueError(f"margin must be < influence, got {self.margin} >= {self.influence}")
 
@@ -134,12 +153,14 @@ class SchemaState(NamedTuple):
     key: jax.Array
     heading: jax.Array
     due: jax.Array
+    memory: mem.Memory
 
 
 @cache
 def init(p: SchemaParams) -> SchemaState:
     """A fresh state: the first tick draws the first noise direction."""
-    return SchemaState(jax.random.PRNGKey(p.seed), jnp.zeros((), jnp.float32), jnp.asarray(-jnp.inf, jnp.float32))
+    return SchemaState(jax.random.PRNGKey(p.seed), jnp.zeros((), jnp.float32), jnp.asarray(-jnp.inf, jnp.float32),
+                       mem.empty(p.memory_points))
 
 
 # ------------------------------------------------------------------------------------------ the schemas
@@ -190,7 +211,7 @@ def noise(state: SchemaState, obs: Observation, p: SchemaParams):
     key, sub = jax.random.split(key)
     heading = jnp.where(redraw, jax.random.uniform(sub, (), jnp.float32, -math.pi, math.pi), state.heading)
     state = SchemaState(jnp.where(redraw, key, state.key), heading,
-                        jnp.where(redraw, obs.t + p.persistence, state.due).astype(jnp.float32))
+                        jnp.where(redraw, obs.t + p.persistence, state.due).astype(jnp.float32), state.memory)
     fade = jnp.minimum(1.0, obs.target[1] / p.slow)
     return state, polar(heading - obs.pose[2], p.noise_gain * fade)
 
@@ -205,11 +226,36 @@ class Vectors(NamedTuple):
     total: jax.Array
 
 
+def avoid_lane(memory: mem.Memory, obs: Observation, p: SchemaParams, radius: float):
+    """Avoid-static-obstacle for the nearest remembered point in the lane ahead ``(2,)`` m/s, robot frame: of the
+    points no ray read this tick (and not on a declared mover), the nearest ahead of the robot within ``lane`` of
+    the strip its body sweeps, pushing as a reading there would. The ring's rays are 30° apart: a wall's end the
+    robot drives at passes between them, unread, the ticks before the contact."""
+    u, valid = mem.egocentric(memory, obs.pose, radius=radius)
+    reach = u[:, 1] + radius
+    ahead, beside = reach * jnp.cos(u[:, 0]), reach * jnp.sin(u[:, 0])
+    unread = valid & (memory.seen < obs.t - 1e-3) & ~memory.moving
+    inside = unread & (ahead > 0) & (jnp.abs(beside) < radius + p.lane)
+    if p.avoid == "nearer":
+        inside = inside & ~beyond_the_goal(u[:, 1], obs.target, obs.final)
+    gap = jnp.where(inside, u[:, 1], jnp.inf)
+    k = jnp.argmin(gap)
+    return -polar(u[k, 0], jnp.where(jnp.isfinite(gap[k]), repulsion(gap[k], p.avoid_gain, p), 0.0))
+
+
 def schemas(state: SchemaState, obs: Observation, angles, p: SchemaParams,
-            radius: float) -> tuple[SchemaState, Vectors]:
-    """Every schema's vector for one tick and their sum (Arkin ch. 4.4.2: vector summation)."""
+            robot: RobotParams = KHEPERA) -> tuple[SchemaState, Vectors]:
+    """Every schema's vector for one tick and their sum (Arkin ch. 4.4.2: vector summation); with ``lane`` the
+    memory takes this tick's IR hits and ``avoid`` includes the lane's push (:func:`avoid_lane`)."""
+    radius = robot.radius
     goal = move_to_goal(obs.target, p)
     avoid = avoid_static(readings_to_the_goal(obs) if p.avoid == "nearer" else obs.ir, angles, p)
+    if p.lane > 0:
+        memory = mem.update(state.memory, obs.pose, obs.ir, angles, obs.t, radius=radius,
+                            range_m=ring(robot, p.sensors).range_m,
+                            merge=p.merge, forget_after=p.memory_s, through=p.see_through, markers=obs.markers)
+        state = state._replace(memory=memory)
+        avoid = avoid + avoid_lane(memory, obs, p, radius)
     markers = avoid_markers(obs.markers, obs.pose, radius, p)
     state, wander = noise(state, obs, p)
     return state, Vectors(goal, avoid, markers, wander, goal + avoid + markers + wander)
@@ -228,7 +274,7 @@ def to_wheels(total, robot: RobotParams = KHEPERA):
 @partial(jax.jit, static_argnames=("p", "robot"))
 def step(state: SchemaState, obs: Observation, angles, *, p: SchemaParams, robot: RobotParams):
     """One tick: every schema's vector, summed, clipped to c* and turned into wheel speeds."""
-    state, v = schemas(state, obs, angles, p, robot.radius)
+    state, v = schemas(state, obs, angles, p, robot)
     return state, to_wheels(v.total, robot)
 
 

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from evaluation.scenario import ScenarioConfig, run_architecture, run_scenario
+from robots.controllers import memory as mem
 from robots.controllers import schema
 from robots.controllers.base import Controller, Observation, velocity_to_wheels
 from robots.controllers.spec import parse_architecture
@@ -26,7 +27,8 @@ move_to_goal = jax.jit(schema.move_to_goal, static_argnames="p")
 avoid_static = jax.jit(schema.avoid_static, static_argnames="p")
 avoid_markers = jax.jit(schema.avoid_markers, static_argnames=("radius", "p"))
 noise = jax.jit(schema.noise, static_argnames="p")
-schemas = jax.jit(schema.schemas, static_argnames=("p", "radius"))
+schemas = jax.jit(schema.schemas, static_argnames=("p", "robot"))
+avoid_lane = jax.jit(schema.avoid_lane, static_argnames=("p", "radius"))
 to_wheels = jax.jit(schema.to_wheels, static_argnames="robot")
 
 
@@ -94,6 +96,41 @@ def test_each_sensed_point_repels_on_its_own_and_the_pushes_add_up():
     assert v[1] == pytest.approx(0.0, abs=1e-6) and v[0] == pytest.approx(-2 * single * math.cos(math.pi / 6), rel=1e-5)
 
 
+def remembered(points, seen, moving=None):
+    """A memory holding ``points`` (world frame) last sensed at ``seen`` s."""
+    m = mem.empty(P.memory_points)
+    k = len(points)
+    return m._replace(points=m.points.at[:k].set(jnp.asarray(points, jnp.float32)),
+                      seen=m.seen.at[:k].set(jnp.asarray(seen, jnp.float32)),
+                      moving=m.moving.at[:k].set(jnp.asarray([False] * k if moving is None else moving)))
+
+
+def test_a_remembered_point_in_the_lane_ahead_that_no_ray_reads_now_repels_as_a_reading_there_would():
+    """The robot at (0.5, 0.5) faces +x; a wall's end 4.5 cm from its centre at −20°, 15.4 mm right of the line of
+    travel — inside the 25 mm + 10 mm lane, and 7.8 mm and 15.4 mm off the −30° and 0° rays, which miss it. Sensed
+    a tick ago (t = 1.0 s, now 1.128 s), it pushes straight away from itself as a reading of 20 mm (45 − 25) would:
+    G (S − g) / (S − R) = 0.24 · 30 / 40 = 0.18 m/s, pointing at 160°."""
+    end = (0.5 + 0.045 * math.cos(math.radians(-20)), 0.5 + 0.045 * math.sin(math.radians(-20)))
+    obs = observation(t=1.128, target=(0.0, 0.5))
+    v = np.asarray(avoid_lane(remembered([end], [1.0]), obs, P, KHEPERA.radius))
+    assert np.linalg.norm(v) == pytest.approx(0.18, rel=1e-4)
+    assert direction(v) == pytest.approx(math.radians(160), abs=1e-4)
+    # Only the nearest point in the lane pushes: a second one behind it adds nothing.
+    farther = (0.5 + 0.06, 0.5 - 0.01)
+    assert np.asarray(avoid_lane(remembered([end, farther], [1.0, 1.0]), obs, P, KHEPERA.radius)) == \
+        pytest.approx(v, abs=1e-7)
+    # Not in the lane: 4 cm right of the line (beyond 35 mm), or behind the robot; a point a ray read this tick
+    # (this tick's reading answers it); one sensed on a declared mover (its marker answers it); the rule off.
+    for point, seen, moving, q in [((0.53, 0.46), 1.0, False, P), ((0.46, 0.49), 1.0, False, P),
+                                   (end, 1.128, False, P), (end, 1.0, True, P),
+                                   (end, 1.0, False, dataclasses.replace(P, lane=0.0))]:
+        _, vs = schemas(schema.init(q)._replace(memory=remembered([point], [seen], [moving])), obs, ANGLES, q, KHEPERA)
+        assert np.asarray(vs.avoid).tolist() == [0, 0], (point, seen, moving, q.lane)
+    # Through the schemas (the memory updated with this tick's empty readings first: no ray passes within 5 mm).
+    _, vs = schemas(schema.init(P)._replace(memory=remembered([end], [1.0])), obs, ANGLES, P, KHEPERA)
+    assert np.asarray(vs.avoid) == pytest.approx(v, abs=1e-6)
+
+
 def test_declared_moving_obstacles_repel_from_their_current_position_by_the_gap_between_the_bodies():
     pose = jnp.asarray([0.5, 0.5, math.pi / 2])  # facing +y
     mover = [[0.5, 0.56, 0.3, 0.0, 0.01]]  # 6 cm ahead, radius 1 cm: gap 6 − 1 − 2.5 = 2.5 cm; velocity ignored
@@ -130,7 +167,7 @@ def test_the_noise_schema_keeps_its_compass_direction_for_its_persistence_then_d
 def test_the_sum_is_clipped_to_c_star_and_driven_with_velocity_to_wheels():
     ir = one_reading(1, 0.02)
     obs = observation(ir=ir, target=(0.4, 0.3), t=0.0)
-    state, v = schemas(schema.init(P), obs, ANGLES, P, KHEPERA.radius)
+    state, v = schemas(schema.init(P), obs, ANGLES, P, KHEPERA)
     total = np.asarray(v.goal + v.avoid + v.markers + v.noise)
     assert np.asarray(v.total) == pytest.approx(total)
     _, wheels = schema.step(schema.init(P), obs, ANGLES, p=P, robot=KHEPERA)
@@ -208,7 +245,7 @@ def test_a_point_straight_ahead_of_the_goal_balances_move_to_goal_where_arkins_l
 
     def total(gap, noise_gain=0.0):
         q = dataclasses.replace(p, noise_gain=noise_gain)
-        _, v = schemas(schema.init(q), observation(one_reading(0, gap), target=(0.0, 0.3)), ANGLES, q, KHEPERA.radius)
+        _, v = schemas(schema.init(q), observation(one_reading(0, gap), target=(0.0, 0.3)), ANGLES, q, KHEPERA)
         return np.asarray(v.total)
 
     assert np.linalg.norm(total(g_star)) < 1e-6  # the summed vector vanishes ...
