@@ -35,6 +35,11 @@ assess the forces from the robot's current position"). The schemas, as Arkin enc
   drives at slips between them and goes unread for the ticks before the contact (traced in
   ``docs/reproduce/every-kind.md``). Only the lane counts, and only its nearest point: every remembered point
   pushing (the same law, summed) holds the robot off narrow doorways and niches;
+- **what the body passes pushes it aside, not back** (``beside``, an extension): a sensed point ahead of the robot
+  and at least ``beside`` clear of the strip its body sweeps keeps only the sideways part of its push. Radial
+  pushes from the two walls of a passage barely wider than the robot cancel across and add up backwards, so the
+  robot stood at a niche's mouth for good — the potential fields' known failure between closely spaced
+  obstacles (Koren and Borenstein, 1991). What lies in the strip, or behind, pushes straight away as before;
 - **noise**: magnitude ``noise_gain``, direction a random compass direction redrawn every
   ``persistence`` s (Arkin's p, the persistence) — his "reactive grease" against local minima. The
   direction is fixed in the world frame (a compass direction, as in Fig. 4.10D), so it does not turn
@@ -76,6 +81,8 @@ itself, one on a flat obstacle across the way does not — ``docs/reproduce/arch
   the long-range ring, 0.16 and 0.32 gave the same outcomes; no run touched the mover);
 - ``lane`` 0.01 m beside the body's strip: the best of 0–2 cm on the generated families' tuning seeds; wider
   lanes lose narrow niches (the measurements: ``docs/reproduce/every-kind.md``);
+- ``beside`` 0.01 m: the best of 0.2–2 cm on the generated families' tuning seeds (the measurements:
+  ``docs/reproduce/every-kind.md``);
 - ``noise_gain`` 0.04 m/s (a quarter of move-to-goal) with ``persistence`` 2.048 s (16 ticks):
   Arkin's "small amount of noise"; it frees the robot from a balance on a small obstacle straight across
   its way, but not from the long wall or the U (much more noise gets round the wall in some runs but
@@ -133,12 +140,16 @@ class SchemaParams:
     memory_s: float = mem.option("memory_s", 30.0)
     merge: float = mem.option("merge", 0.01)
     see_through: float = mem.option("see_through", 0.005, why="the points' radius, merge / 2, as Samba's")
+    beside: float = field(default=0.01, metadata={"help": "avoid-static-obstacle: a point ahead that the strip the body "
+                                                         "sweeps passes by this many m or more pushes only sideways, "
+                                                         "not back (0: every point pushes straight away, Arkin; an "
+                                                         "extension)"})
 
     def __post_init__(self):
         for name in ("goal_gain", "slow", "influence", "persistence", "memory_s", "merge", "see_through"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
-        for name in ("avoid_gain", "margin", "margin_gain", "marker_gain", "noise_gain", "lane"):
+        for name in ("avoid_gain", "margin", "margin_gain", "marker_gain", "noise_gain", "lane", "beside"):
             if not getattr(self, name) >= 0:
                 raise ValueError(f"{name} must be >= 0, got {getattr(self, name)}")
         if self.memory_points < 1:
@@ -182,13 +193,19 @@ def repulsion(gap, gain: float, p: SchemaParams):
     return jnp.where(gap > p.influence, 0.0, jnp.where(gap > p.margin, linear, p.margin_gain))
 
 
-def avoid_static(readings, angles, p: SchemaParams):
+def avoid_static(readings, angles, p: SchemaParams, radius: float = KHEPERA.radius):
     """Avoid-static-obstacle summed over the IR hits ``(2,)`` m/s, robot frame: each sensed point at ``readings``
     (m from the body surface; ``inf`` = nothing) along its sensor's direction ``angles`` pushes the robot
-    straight away from it."""
+    straight away from it — or, with ``beside``, only sideways (its backward part dropped) when it lies ahead and
+    at least ``radius + beside`` to the side of the line of travel: the body passes it."""
     seen = jnp.isfinite(readings)
     magnitude = jnp.where(seen, repulsion(jnp.where(seen, readings, jnp.inf), p.avoid_gain, p), 0.0)
-    return -jnp.sum(polar(angles, magnitude), axis=0)
+    push = -polar(angles, magnitude)
+    if p.beside > 0:
+        reach = jnp.where(seen, readings, 0.0) + radius
+        clear = (jnp.cos(angles) > 0) & (jnp.abs(reach * jnp.sin(angles)) >= radius + p.beside)
+        push = push.at[:, 0].set(jnp.where(clear, 0.0, push[:, 0]))
+    return jnp.sum(push, axis=0)
 
 
 def avoid_markers(markers, pose, radius: float, p: SchemaParams):
@@ -249,7 +266,7 @@ def schemas(state: SchemaState, obs: Observation, angles, p: SchemaParams,
     memory takes this tick's IR hits and ``avoid`` includes the lane's push (:func:`avoid_lane`)."""
     radius = robot.radius
     goal = move_to_goal(obs.target, p)
-    avoid = avoid_static(readings_to_the_goal(obs) if p.avoid == "nearer" else obs.ir, angles, p)
+    avoid = avoid_static(readings_to_the_goal(obs) if p.avoid == "nearer" else obs.ir, angles, p, radius)
     if p.lane > 0:
         memory = mem.update(state.memory, obs.pose, obs.ir, angles, obs.t, radius=radius,
                             range_m=ring(robot, p.sensors).range_m,

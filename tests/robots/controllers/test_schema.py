@@ -20,6 +20,7 @@ from robots.worldnames import load_world
 from tests.robots.controllers.worlds import dead_end
 
 P = schema.SchemaParams()
+ARKIN = dataclasses.replace(P, beside=0.0)  # every sensed point pushes straight away (Arkin's avoid-static-obstacle)
 ANGLES = jnp.asarray(LONG_RANGE.angles, jnp.float32)  # 0° first, 30° apart, + = left
 
 # The schemas jitted (one compilation each instead of one per primitive: keeps this file fast).
@@ -74,7 +75,7 @@ def test_avoid_points_away_from_the_obstacle_is_zero_outside_the_sphere_and_grow
     gaps = [P.margin + 0.001, 0.02, 0.03, 0.04, P.influence]
     magnitudes = []
     for g in gaps:
-        v = np.asarray(avoid_static(jnp.asarray(one_reading(sensor, g)), ANGLES, P))
+        v = np.asarray(avoid_static(jnp.asarray(one_reading(sensor, g)), ANGLES, ARKIN))
         magnitudes.append(np.linalg.norm(v))
         if g < P.influence:
             assert direction(v) == pytest.approx(phi - math.pi, abs=1e-5)  # straight away from the point
@@ -82,10 +83,31 @@ def test_avoid_points_away_from_the_obstacle_is_zero_outside_the_sphere_and_grow
     # Arkin's linear law between R and S: G (S − g) / (S − R)
     assert magnitudes[1] == pytest.approx(P.avoid_gain * (P.influence - 0.02) / (P.influence - P.margin), rel=1e-5)
     for beyond in (P.influence + 0.005, 0.15, np.inf):
-        assert np.asarray(avoid_static(jnp.asarray(one_reading(sensor, beyond)), ANGLES, P)).tolist() == [0, 0]
-    inside = np.asarray(avoid_static(jnp.asarray(one_reading(sensor, P.margin / 2)), ANGLES, P))
+        assert np.asarray(avoid_static(jnp.asarray(one_reading(sensor, beyond)), ANGLES, ARKIN)).tolist() == [0, 0]
+    inside = np.asarray(avoid_static(jnp.asarray(one_reading(sensor, P.margin / 2)), ANGLES, ARKIN))
     assert np.linalg.norm(inside) == pytest.approx(P.margin_gain)  # Arkin's "infinity" within the safety margin
     assert P.margin_gain > P.goal_gain + P.noise_gain  # ... which nothing else outweighs
+
+
+def test_a_point_the_body_passes_pushes_it_aside_not_back():
+    """``beside`` 1 cm: a point at 60° left, 20 mm from the body, lies (25 + 20) · sin 60° = 39.0 mm to the side of
+    the line of travel, beyond the 25 mm radius + 10 mm, so of its push G (S − g) / (S − R) = 0.24 · 30 / 40 =
+    0.18 m/s only the sideways part is left: (0, −0.18 sin 60°) = (0, −0.1559). At 30° it lies 22.5 mm to the
+    side, in the strip: the whole push, as Arkin's. The two walls of a passage at ±60° push the robot neither
+    back nor aside (Arkin's law: 0.18 m/s back); behind the robot (120°) a point pushes straight away."""
+    at60 = np.asarray(avoid_static(jnp.asarray(one_reading(2, 0.02)), ANGLES, P))
+    assert at60 == pytest.approx([0.0, -0.18 * math.sin(math.pi / 3)], abs=1e-6)
+    at30 = np.asarray(avoid_static(jnp.asarray(one_reading(1, 0.02)), ANGLES, P))
+    assert at30 == pytest.approx([-0.18 * math.cos(math.pi / 6), -0.18 * math.sin(math.pi / 6)], abs=1e-6)
+    walls = one_reading(2, 0.02)
+    walls[10] = 0.02  # −60°
+    assert np.asarray(avoid_static(jnp.asarray(walls), ANGLES, P)) == pytest.approx([0.0, 0.0], abs=1e-6)
+    assert np.asarray(avoid_static(jnp.asarray(walls), ANGLES, ARKIN)) == pytest.approx([-0.18, 0.0], abs=1e-6)
+    at120 = np.asarray(avoid_static(jnp.asarray(one_reading(4, 0.02)), ANGLES, P))
+    assert at120 == pytest.approx([0.18 * 0.5, -0.18 * math.sin(2 * math.pi / 3)], abs=1e-6)
+    # 60° at 15 mm: 34.6 mm to the side, inside 35 mm — pushed straight away.
+    near = np.asarray(avoid_static(jnp.asarray(one_reading(2, 0.015)), ANGLES, P))
+    assert direction(near) == pytest.approx(math.radians(60) - math.pi, abs=1e-5)
 
 
 def test_each_sensed_point_repels_on_its_own_and_the_pushes_add_up():
@@ -258,17 +280,18 @@ def test_a_point_straight_ahead_of_the_goal_balances_move_to_goal_where_arkins_l
 
 def test_without_noise_an_obstacle_straight_across_the_way_is_a_local_minimum_and_the_noise_schema_gets_past():
     """Arkin Fig. 4.13: without noise the forces counterbalance and the robot stalls short of an 8 cm obstacle
-    straight across its way; with the noise schema (default gains) it gets round and stops at the goal."""
+    straight across its way; with the noise schema (default gains) it gets round and stops at the goal. Arkin's
+    radial pushes (``beside=0``): with ``beside`` (the default) the robot gets round even without the noise."""
     world = across_the_way(0.08)
     config = ScenarioConfig(time_limit=40.0, recover=False)  # the local minimum itself, not the recovery from it
-    still = run_scenario(world, schema.build(dataclasses.replace(P, noise_gain=0.0), robot=IDEAL), config=config)
+    still = run_scenario(world, schema.build(dataclasses.replace(ARKIN, noise_gain=0.0), robot=IDEAL), config=config)
     assert still.trapped and still.collisions == 0
     x, y = still.poses[-1][:2]
     assert 0.42 < x < 0.44 and abs(y - 0.5) < 0.03  # 2.6 ± 1 cm from the obstacle's face (x = 0.49) to the body
     last = still.times >= still.times[-1] - 15.0
     assert np.ptp(still.poses[last, 0]) < 0.005 and np.ptp(still.poses[last, 1]) < 0.005  # not a millimetre of way
     for seed in range(3):
-        free = run_scenario(world, schema.build(dataclasses.replace(P, seed=seed), robot=IDEAL), config=config)
+        free = run_scenario(world, schema.build(dataclasses.replace(ARKIN, seed=seed), robot=IDEAL), config=config)
         assert free.reached and free.collisions == 0 and free.time_s < 15.0
 
 
