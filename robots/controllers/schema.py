@@ -250,9 +250,9 @@ def avoid_lane(memory: mem.Memory, obs: Observation, p: SchemaParams, radius: fl
     robot drives at passes between them, unread, the ticks before the contact."""
     u, valid = mem.egocentric(memory, obs.pose, radius=radius)
     reach = u[:, 1] + radius
-    ahead, beside = reach * jnp.cos(u[:, 0]), reach * jnp.sin(u[:, 0])
+    ahead, across = reach * jnp.cos(u[:, 0]), reach * jnp.sin(u[:, 0])
     unread = valid & (memory.seen < obs.t - 1e-3) & ~memory.moving
-    inside = unread & (ahead > 0) & (jnp.abs(beside) < radius + p.lane)
+    inside = unread & (ahead > 0) & (jnp.abs(across) < radius + p.lane)
     if p.avoid == "nearer":
         inside = inside & ~beyond_the_goal(u[:, 1], obs.target, obs.final)
     gap = jnp.where(inside, u[:, 1], jnp.inf)
