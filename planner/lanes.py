@@ -19,15 +19,21 @@ from dataclasses import replace
 
 import numpy as np
 
-from robots.geometry import Circle, Polygon, Segment
+from robots.geometry import Circle, Polygon, Segment, polygon_contains
 
 #: Corners of the polygon that stands for a round mover (it circumscribes the circle).
 ROUND = 16
 
 
-def lanes(world) -> tuple[Polygon, ...]:
+def lanes(world, grow: float = 0.0) -> tuple[Polygon, ...]:
     """The lanes ``(Polygon, ...)`` of ``world``'s movers on straight paths: the convex hull of each mover's shape at
-    the path's two ends (a circle by its circumscribed ``ROUND``-gon)."""
+    the path's two ends (a circle by its circumscribed ``ROUND``-gon), grown by ``grow`` (m; each corner by the
+    ``ROUND``-gon round a circle of that radius)."""
+    return tuple(lane for _, lane in _movers_lanes(world, grow))
+
+
+def _movers_lanes(world, grow: float = 0.0):
+    """``(mover, lane)`` pairs of :func:`lanes`."""
     from robots.worldfile import LinePath
 
     out = []
@@ -35,10 +41,36 @@ def lanes(world) -> tuple[Polygon, ...]:
         if not isinstance(mover.path, LinePath):
             continue
         corners = _outline(mover.shape)
+        if grow > 0:
+            corners = (corners[:, None, :] + _ring(grow)[None]).reshape(-1, 2)
         ends = np.asarray([mover.path.start, mover.path.end], dtype=float)
         hull = convex_hull(np.vstack([corners + ends[0], corners + ends[1]]))
         if len(hull) >= 3:
-            out.append(Polygon(tuple((float(x), float(y)) for x, y in hull)))
+            out.append((mover, Polygon(tuple((float(x), float(y)) for x, y in hull))))
+    return out
+
+
+def runs_along(world, points, angle: float = math.pi / 4, step: float = 0.005) -> tuple[bool, ...]:
+    """For each lane of :func:`lanes` (same order), whether the route through ``points`` ``(n, 2)`` (start,
+    checkpoints) runs along it: some stretch of a leg inside the lane within ``angle`` (rad) of the mover's path,
+    sampled every ``step`` m. Where a route runs along a lane the robot meets the mover head-on; one that crosses it
+    meets the mover once, from the side."""
+    ends = np.asarray(points, dtype=float)
+    out = []
+    for mover, lane in _movers_lanes(world):
+        path = np.subtract(mover.path.end, mover.path.start, dtype=float)
+        along = False
+        for a, b in zip(ends[:-1], ends[1:]):
+            leg = b - a
+            length = float(np.hypot(*leg))
+            cos = abs(float(leg @ path)) / max(length * float(np.hypot(*path)), 1e-12)
+            if length == 0 or cos < math.cos(angle):
+                continue
+            s = np.linspace(0.0, 1.0, max(2, int(math.ceil(length / step)) + 1))[:, None]
+            if polygon_contains(a + s * leg, np.asarray(lane.vertices(), dtype=float)).any():
+                along = True
+                break
+        out.append(along)
     return tuple(out)
 
 

@@ -18,7 +18,7 @@ from ekm.errors import InputError
 from planner.bitmap import clearance_ok, free_cell_at, grid_cells, padded_obstacles, rasterise
 from planner.checkpoints import greedy_checkpoints, path_length
 from planner.graph import Graph, adjacency
-from planner.lanes import keeping_off
+from planner.lanes import keeping_off, runs_along
 from planner.lanes import lanes as mover_lanes
 from planner.quadtree import label_quadtree
 from planner.search import shortest_route
@@ -169,23 +169,44 @@ def plan(world, start=None, goal=None, *, cell: float = DEFAULT_CELL, method: st
 
 def kept_off_lanes(make, world, lanes: tuple[float, float] | None, padding: float) -> Plan:
     """``make(world)`` — or, with ``lanes`` = ``(margin, detour)``, ``make`` on ``world`` with its movers' lanes as
-    obstacles (:mod:`planner.lanes`) when that plan exists, is at most ``detour`` times as long, and every leg of it
-    leaves the robot (radius ``padding``, m) at least ``margin`` (m) beside every lane; its ``avoided`` the lanes.
-    Why: a route beside a shuttling mover's lane spares the reactive layer a head-on meeting in a corridor; one
-    round the building, or one that grazes the mover, is not worth it."""
+    obstacles (:mod:`planner.lanes`) where that plan exists, is at most ``detour`` times as long, and every leg of it
+    leaves the robot (radius ``padding``, m) at least ``margin`` (m) beside every lane kept off; its ``avoided`` the
+    lanes kept off. First all the lanes as they are; where no such plan keeps off them all, each lane the plain route
+    runs along (:func:`planner.lanes.runs_along`), grown by ``margin``, on its own merits, in the world's order: kept
+    off if the route still meets the conditions with it and those kept before. Why: a route beside a shuttling
+    mover's lane spares the reactive layer a head-on meeting in a corridor; one round the building, or one that
+    grazes the mover, is not worth it — and a mover crossing the only doorway must not stop the route keeping beside
+    another that shuttles along a corridor further on (issue 35, ``movers:7``; the lane grown, since the route planned
+    beside the lane as it is passed 7 mm from its corner). Growing every lane cost routes squeezed between a wall and
+    a lane, and keeping off lanes the route only crosses cost detours through other movers' ways (both measured in
+    ``docs/reproduce/every-kind.md``)."""
     plain = make(world)
-    shapes = mover_lanes(world) if lanes is not None else ()
-    if not shapes:
-        return plain
-    try:
-        kept = make(keeping_off(world, shapes))
-    except InputError:  # NoRouteError included; or the start or goal lies in a lane
+    if lanes is None:
         return plain
     margin, detour = lanes
-    beside = [(shape, padding) for shape in shapes]
-    ends = np.vstack([kept.start, kept.checkpoints])
-    spare = min(segment_slack(a, b, beside) for a, b in zip(ends[:-1], ends[1:]))
-    return replace(kept, avoided=shapes) if kept.length <= detour * plain.length and spare >= margin else plain
+    shapes, grown = mover_lanes(world), mover_lanes(world, margin)
+    if not shapes:
+        return plain
+
+    def keep_off(some, on):  # the plan off the lanes ``on`` numbered ``some``, or None where it breaks a condition
+        try:
+            kept = make(keeping_off(world, tuple(on[i] for i in some)))
+        except InputError:  # NoRouteError included; or the start or goal lies in a lane
+            return None
+        beside = [(shapes[i], padding) for i in some]
+        ends = np.vstack([kept.start, kept.checkpoints])
+        spare = min(segment_slack(a, b, beside) for a, b in zip(ends[:-1], ends[1:]))
+        ok = kept.length <= detour * plain.length and spare >= margin
+        return replace(kept, avoided=tuple(on[i] for i in some)) if ok else None
+
+    best = keep_off(range(len(shapes)), shapes)
+    if best is None:
+        some, along = (), runs_along(world, np.vstack([plain.start, plain.checkpoints]))
+        for i in (i for i in range(len(shapes)) if along[i]):
+            tried = keep_off(some + (i,), grown)
+            if tried is not None:
+                some, best = some + (i,), tried
+    return plain if best is None else best
 
 
 @functools.lru_cache(maxsize=64)

@@ -105,3 +105,40 @@ def test_a_replan_keeps_off_the_lane_too():
     world = corridor()
     p = replan(plan(world), world, (0.3, 0.1), 0.0, lanes=(0.01, 1.3))
     assert len(p.avoided) == 1 and to_box(route(p), 0.17, 0.195, 1.03, 0.245).min() >= R + 0.01 - 1e-9
+
+
+def test_a_lane_no_route_can_keep_off_does_not_stop_the_route_keeping_off_another():
+    """The doorway of the test above, a 6 x 5 cm box shuttling through it (y = 0.2, x 0.55..0.65: lane x 0.52..0.68,
+    y 0.175..0.225, 2.5 cm each side in the 10 cm doorway) and a second box shuttling beyond it along y = 0.22, x
+    0.75..1.0 (lane x 0.72..1.03, y 0.195..0.245) across the straight way to the goal (1.1, 0.2). No route keeps off
+    both; one keeps off the second's lane, below it (19 cm of room): it is planned, through the doorway, and keeps
+    radius + margin = 3.5 cm from that lane."""
+    doc = {"name": "two-lanes", "size": [1.2, 0.4], "start": [0.1, 0.2, 0.0], "goal": [1.1, 0.2],
+           "walls": [[0.6, 0.0, 0.6, 0.145], [0.6, 0.255, 0.6, 0.4]],
+           "moving": [{"shape": {"type": "box", "center": [0.0, 0.0], "size": [0.06, 0.05]},
+                       "path": {"type": "line", "from": [x0, y], "to": [x1, y], "speed_mps": 0.05}}
+                      for x0, x1, y in ((0.55, 0.65, 0.2), (0.75, 1.0, 0.22))]}
+    world = parse_world(doc, "two-lanes.json")
+    p = plan(world, lanes=(0.01, 1.3))
+    assert len(p.avoided) == 1
+    xs = route(p)
+    assert to_box(xs, 0.72, 0.195, 1.03, 0.245).min() >= R + 0.01 - 1e-9
+    at_wall = xs[np.abs(xs[:, 0] - 0.6) < 1e-3]
+    assert len(at_wall) and np.all((0.15 + R - 1e-3 <= at_wall[:, 1]) & (at_wall[:, 1] <= 0.25 - R + 1e-3))
+    assert to_box(route(plan(world)), 0.72, 0.195, 1.03, 0.245).min() == 0.0  # the plain route crosses that lane
+
+
+def test_a_route_runs_along_a_lane_it_follows_and_not_along_one_it_crosses():
+    """The default box's lane (x 0.17..1.03, y 0.195..0.245, the mover's path along x): a leg along y = 0.2 lies in it
+    for 86 cm at 0°; one along x = 0.6 crosses it at 90°; one at 30° to the path from y = 0.22 is in it for its first
+    5 cm; one at 60° starts in it too, but beyond the 45° that count as along."""
+    from planner.lanes import runs_along
+
+    world = corridor()
+    assert runs_along(world, [(0.1, 0.2), (1.1, 0.2)]) == (True,)
+    assert runs_along(world, [(0.6, 0.02), (0.6, 0.38)]) == (False,)
+    assert runs_along(world, [(0.5, 0.22), (0.5 + 0.2 * math.cos(math.pi / 6), 0.22 + 0.2 * math.sin(math.pi / 6))]) \
+        == (True,)
+    assert runs_along(world, [(0.5, 0.22), (0.5 + 0.2 * math.cos(math.pi / 3), 0.22 + 0.2 * math.sin(math.pi / 3))]) \
+        == (False,)
+    assert runs_along(world, [(0.1, 0.1), (1.1, 0.1)]) == (False,)  # along, but 7.5 cm below the lane
