@@ -74,3 +74,15 @@ def escape(wheels, t_stand, straight, grid: am.VelocityGrid, escape_s: float):
     v = jnp.asarray(grid.speed_values())[best % grid.speeds] * jnp.where(best // grid.speeds == 0, 1.0, -1.0)
     threatened = (t_stand < escape_s) & (t_best > t_stand)
     return jnp.where(threatened, jnp.stack([v, v]), wheels)
+
+
+def out_of_the_way(wheels, points, still, markers, pose, grow: float, max_speed: float, escape_s: float,
+                   speeds: int = 8):
+    """:func:`escape` for a controller that remembers world ``points`` ``(K, 2)`` (those ``still`` ``(K,)`` count
+    along the ray) and sees the declared movers ``markers`` ``(k, 5)`` (world frame) from ``pose`` ``(3,)``: the
+    robot's disc grown by ``grow`` (m), straight motions at ``speeds`` speeds evenly up to ``max_speed`` (m/s)."""
+    objects, valid = object_markers(points, still, markers, jnp.asarray(pose, jnp.float32))
+    grid = am.VelocityGrid(4, speeds, max_speed)
+    n = points.shape[0]
+    return escape(wheels, standing_time(objects, valid, n, grow), straight_times(objects, valid, n, grow, grid), grid,
+                  escape_s)

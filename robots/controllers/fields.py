@@ -85,7 +85,6 @@ from ekm import indirect
 from ekm.config import EKMConfig
 from ekm.angles import wrap, wrap_near
 from ekm.kohonen import relative, winner
-from robots.controllers import actionmaps as am
 from robots.controllers import escape as esc
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, sensor_angles
@@ -494,15 +493,12 @@ def guard(c, u_obs, valid, radius: float, p: FieldParams):
 def out_of_the_way(c, points, still, obs: Observation, radius: float, max_speed: float, p: FieldParams):
     """The wheel command ``c`` ``(2,)``, or — when a declared mover would hit the robot standing within ``escape_s``
     — the straight motion ahead or back that puts the first contact off the longest (:mod:`~robots.controllers.
-    escape`, shared with Samba; the remembered ``points`` ``(K, 2)`` that are ``still`` count along the ray).
-    Why: the fields choose a displacement the wheels reach along an arc that starts with a turn, and a robot turning
-    in a mover's path is hit (measured in ``docs/reproduce/every-kind.md``)."""
-    objects, valid = esc.object_markers(points, still, obs.markers, jnp.asarray(obs.pose, jnp.float32))
-    grid = am.VelocityGrid(4, ESCAPE_SPEEDS, max_speed)
-    grow = radius + p.clearance
-    n = points.shape[0]
-    return esc.escape(c, esc.standing_time(objects, valid, n, grow), esc.straight_times(objects, valid, n, grow, grid),
-                      grid, p.escape_s)
+    escape`, shared with Samba and command fusion; the remembered ``points`` ``(K, 2)`` that are ``still`` count along
+    the ray), the body grown by the clearance. Why: the fields choose a displacement the wheels reach along an arc
+    that starts with a turn, and a robot turning in a mover's path is hit (measured in
+    ``docs/reproduce/every-kind.md``)."""
+    return esc.out_of_the_way(c, points, still, obs.markers, obs.pose, radius + p.clearance, max_speed, p.escape_s,
+                              ESCAPE_SPEEDS)
 
 
 #: Speeds (evenly up to the robot's top speed) among which :func:`out_of_the_way` picks, as Samba's grid has.

@@ -65,6 +65,7 @@ import numpy as np
 
 from ekm import indirect
 from ekm.config import EKMConfig
+from robots.controllers import escape as esc
 from robots.controllers import memory as mem
 from robots.controllers.base import Controller, Observation, avoid_option, proximity, readings_to_the_goal
 from robots.controllers.braitenberg import FRONT, avoid, z_matrix
@@ -113,6 +114,10 @@ class FusionParams:
     memory_s: float = mem.option("memory_s", 30.0, "remember=true")
     merge: float = mem.option("merge", 0.01, "remember=true")
     see_through: float = mem.option("see_through", 0.005, "remember=true", "the points' radius, as Samba's")
+    escape_s: float = field(default=2.5, metadata={
+        "help": "a declared mover that would hit the robot standing (its body grown by 1 cm) within this many s: it "
+                "drives straight ahead or back out of the mover's way, as Samba and the fields do (0: never; an "
+                "extension), s"})
 
     def __post_init__(self):
         if not 0.0 < self.beta <= 1.0:
@@ -123,6 +128,8 @@ class FusionParams:
             raise ValueError(f"back_cone must be in (0, 180] degrees, got {self.back_cone}")
         if not self.lane >= 0:
             raise ValueError(f"lane must be >= 0 (1 or more: off), got {self.lane}")
+        if not self.escape_s >= 0:
+            raise ValueError(f"escape_s must be >= 0, got {self.escape_s}")
         for name in ("memory_s", "merge", "see_through", "within"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be > 0, got {getattr(self, name)}")
@@ -150,15 +157,20 @@ def init(p: FusionParams = FusionParams()) -> FusionState:
                        mem.empty(p.memory_points))
 
 
+#: m the escape grows the body by (``escape_s``): the fields' clearance.
+ESCAPE_CLEARANCE = 0.01
+
+
 @partial(jax.jit, static_argnames=("cfg", "beta", "period", "sensors", "on_sensed", "nearer", "remember", "radius",
-                                   "passage"))
+                                   "passage", "escape"))
 def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: float, period: float,
          sensors: SensorSet, on_sensed: bool = False, nearer: bool = False, remember: tuple | None = None,
-         radius: float = KHEPERA.radius, passage: tuple | None = None):
+         radius: float = KHEPERA.radius, passage: tuple | None = None, escape: tuple | None = None):
     """One tick: refresh c_p if its period is up or the checkpoint changed, c_o from the IR (with ``nearer``, none
     beyond the goal; with ``remember`` = (merge, memory_s, see_through, within), the remembered points too,
     :func:`~robots.controllers.discrete.as_readings`) through ``z`` ``(2, 2, m)`` — ``z[0]`` while c_p drives
-    forward, ``z[1]`` while it reverses — and fuse (Eq. 4.11)."""
+    forward, ``z[1]`` while it reverses — and fuse (Eq. 4.11); with ``escape`` = (escape_s, max_speed), out of a
+    declared mover's way (:func:`robots.controllers.escape.out_of_the_way`)."""
     refresh = (obs.t >= state.due - 1e-6) | (obs.target_id != state.target_id)
     if on_sensed:
         refresh = refresh | jnp.any(jnp.isfinite(obs.ir))
@@ -178,6 +190,11 @@ def step(state: FusionState, obs: Observation, ekm, z, *, cfg: EKMConfig, beta: 
                               jnp.asarray(mirror))
     c_o = avoid(z[reversing], proximity(readings, sensors))
     c = beta * c_p + (1.0 - beta) * c_o
+    if escape is not None:
+        escape_s, max_speed = escape
+        still = jnp.isfinite(memory.seen) & ~mem.near_movers(memory.points, obs.markers)
+        c = esc.out_of_the_way(c, memory.points, still, obs.markers, obs.pose, radius + ESCAPE_CLEARANCE, max_speed,
+                               escape_s)
     return FusionState(c_p, due, jnp.asarray(obs.target_id, jnp.int32), memory), c
 
 
@@ -218,6 +235,7 @@ def build(params: FusionParams, ekm, cfg: EKMConfig, robot: RobotParams = KHEPER
                             else None),
                   radius=robot.radius,
                   passage=((params.lane, (FRONT, math.radians(params.back_cone) if params.facing == "travel" else None),
-                            mirrors(sensors.angles)) if params.lane < 1.0 else None))
+                            mirrors(sensors.angles)) if params.lane < 1.0 else None),
+                  escape=(params.escape_s, robot.max_wheel_speed) if params.escape_s > 0 else None)
     return Controller(name="fusion", spec=spec, sensors=sensors, init=partial(init, params), step=run, params=params,
                       robot=robot)
