@@ -34,8 +34,9 @@ FIGURES = {"three-rooms-static": "6.3, 6.6", "three-rooms-moving": "6.4", "three
            "extended-obstacle": "6.7", "concave-obstacle": "6.8"}
 SUITE = "corridor:20,traps:20,clutter:20,maze:20,movers:20,blocked:20"
 # Command fusion as ch. 4.4-4.5 wrote it: every reading avoided, Z facing the robot's front (docs/reproduce/ch62.md).
-THESIS_FUSION = "fusion:avoid=all,facing=front,remember=false,lane=1"
-THESIS_FUSION_LONG = "fusion:sensors=long,period=0.128,avoid=all,facing=front,remember=false,lane=1"  # ch. 6.2.2
+THESIS_FUSION = "fusion:avoid=all,facing=front,remember=false,lane=1,escape_s=0"
+# ch. 6.2.2
+THESIS_FUSION_LONG = "fusion:sensors=long,period=0.128,avoid=all,facing=front,remember=false,lane=1,escape_s=0"
 THESIS_FIELDS = "fields,fields:form=thesis"
 THESIS_ARCHITECTURES = f"{THESIS_FUSION},{THESIS_FUSION_LONG},{THESIS_FIELDS}"
 CLAIM_ARCHITECTURES = "fusion,fields,schema,samba,subsumption,damn,deliberation"

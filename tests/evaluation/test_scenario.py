@@ -357,9 +357,9 @@ def test_a_robot_whose_detour_brings_a_later_checkpoint_into_view_moves_on_to_it
 # Command fusion with ch. 4.4's vehicle: Z's forward-facing sensors always the robot's front, reading its sensors
 # alone (the defaults turn Z round while the map reverses and read the memory near the body, extensions measured on
 # the generated suite: docs/reproduce/architectures.md).
-FUSION = "fusion:facing=front,remember=false,lane=1"
+FUSION = "fusion:facing=front,remember=false,lane=1,escape_s=0"
 # ch. 6.2.2: 12 long-range sensors, both modules at 0.128 s
-FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front,remember=false,lane=1"
+FUSION_LONG = "fusion:sensors=long,period=0.128,facing=front,remember=false,lane=1,escape_s=0"
 THESIS = ScenarioConfig(checkpoints="thesis", recover=False)
 
 
