@@ -152,13 +152,14 @@ def test_fusion_reads_a_passages_two_walls_as_nothing_but_a_wall_on_one_side_and
 
 
 def test_fusion_steps_straight_out_of_a_movers_way(signed_map):
-    """As the fields' and Samba's tests: the robot at (0.5, 0.5) facing +x, its checkpoint to its left, nothing sensed;
-    a mover of radius 2.5 cm 12 cm to its left comes at it at 0.1 m/s. Standing, the discs grown by 1 cm (6 cm) meet
-    after 0.6 s < escape_s = 2.5 s. Straight ahead at v the nearest approach is 0.12 v / sqrt(v² + 0.01): 4.5 cm at
-    0.04 m/s (hit), 6.2 cm at 0.06 m/s (never): both wheels 0.06 m/s. With escape_s = 0 the fused command stands."""
-    mover = [0.5, 0.62, 0.0, -0.1, 0.025]
+    """The fields' and Samba's test, the mover nearer: the robot at (0.5, 0.5) facing +x, its checkpoint to its left,
+    nothing sensed; a mover of radius 2.5 cm 9 cm to its left comes at it at 0.1 m/s. Standing, the discs — the
+    body grown by 1 cm, 3.5 + 2.5 = 6 cm — meet after 0.3 s < escape_s = 2.5 s. Straight ahead at v the nearest
+    approach is 0.09 v / sqrt(v² + 0.01): 5.6 cm at 0.08 m/s (hit), 6.4 cm at 0.10 m/s (never): both wheels
+    0.10 m/s (without the 1 cm, 0.08 would do). With escape_s = 0 the fused command stands."""
+    mover = [0.5, 0.59, 0.0, -0.1, 0.025]
     obs = observation(np.full(8, np.inf), target=(np.pi / 2, 0.3), markers=[mover])
     ctl = fusion_controller(signed_map)
-    np.testing.assert_allclose(np.asarray(ctl.step(ctl.init(), obs)[1]), [0.06, 0.06], atol=1e-6)
+    np.testing.assert_allclose(np.asarray(ctl.step(ctl.init(), obs)[1]), [0.10, 0.10], atol=1e-6)
     off = fusion_controller(signed_map, escape_s=0.0)
-    assert not np.allclose(np.asarray(off.step(off.init(), obs)[1]), [0.06, 0.06], atol=1e-3)
+    assert not np.allclose(np.asarray(off.step(off.init(), obs)[1]), [0.10, 0.10], atol=1e-3)
