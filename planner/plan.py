@@ -176,15 +176,15 @@ def kept_off_lanes(make, world, lanes: tuple[float, float] | None, padding: floa
     off if the route still meets the conditions with it and those kept before. Why: a route beside a shuttling
     mover's lane spares the reactive layer a head-on meeting in a corridor; one round the building, or one that
     grazes the mover, is not worth it — and a mover crossing the only doorway must not stop the route keeping beside
-    another that shuttles along a corridor further on (issue 35, ``movers:7``; the lane grown, since the route planned
-    beside the lane as it is passed 7 mm from its corner). Growing every lane cost routes squeezed between a wall and
-    a lane, and keeping off lanes the route only crosses cost detours through other movers' ways (both measured in
-    ``docs/reproduce/every-kind.md``)."""
+    another that shuttles along a corridor further on (issue 35, ``movers:7``; the lane grown, since a route planned
+    beside the lane as it is cut its corner closer than the margin). Growing every lane cost routes squeezed between a
+    wall and a lane, and keeping off lanes the route only crosses cost detours through other movers' ways (both
+    measured in ``docs/reproduce/every-kind.md``)."""
     plain = make(world)
     if lanes is None:
         return plain
     margin, detour = lanes
-    shapes, grown = mover_lanes(world), mover_lanes(world, margin)
+    shapes = mover_lanes(world)
     if not shapes:
         return plain
 
@@ -201,6 +201,7 @@ def kept_off_lanes(make, world, lanes: tuple[float, float] | None, padding: floa
 
     best = keep_off(range(len(shapes)), shapes)
     if best is None:
+        grown = mover_lanes(world, margin)
         some, along = (), runs_along(world, np.vstack([plain.start, plain.checkpoints]))
         for i in (i for i in range(len(shapes)) if along[i]):
             tried = keep_off(some + (i,), grown)
